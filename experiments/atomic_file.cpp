@@ -1,0 +1,55 @@
+#include "experiments/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <vector>
+
+#include "kernel/input_error.h"
+
+namespace radquad {
+
+void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
+  const std::filesystem::path directory =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::string pattern = (directory / (path.filename().string() + ".tmp.XXXXXX")).string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int descriptor = mkstemp(name.data());
+  if (descriptor < 0) {
+    throw InputError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
+  }
+  const std::string temporary(name.data());
+  auto fail = [&](const char* what) {
+    const std::string reason = std::strerror(errno);
+    ::close(descriptor);
+    ::unlink(temporary.c_str());
+    throw InputError(path.string() + ": cannot write (" + what + ": " + reason + ")");
+  };
+  std::size_t written = 0;
+  while (written < contents.size()) {
+    const ssize_t n = ::write(descriptor, contents.data() + written, contents.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("write");
+    }
+    written += std::size_t(n);
+  }
+  if (::fchmod(descriptor, 0644) != 0) fail("chmod");
+  if (::fsync(descriptor) != 0) fail("fsync");
+  if (::close(descriptor) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(temporary.c_str());
+    throw InputError(path.string() + ": cannot write (close: " + reason + ")");
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(temporary.c_str());
+    throw InputError(path.string() + ": cannot write (rename: " + reason + ")");
+  }
+}
+
+}  // namespace radquad

@@ -1,0 +1,114 @@
+#include "experiments/json_input.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "kernel/input_error.h"
+
+namespace radquad {
+
+nlohmann::json readJsonFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& error) {
+    throw InputError(path.string() + ": malformed JSON: " + error.what());
+  }
+}
+
+void checkKeys(const nlohmann::json& object, const std::string& where,
+               const std::vector<const char*>& allowed, const std::vector<const char*>& required) {
+  if (!object.is_object()) throw InputError(where + ": expected a JSON object");
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (const char* key : allowed) known = known || item.key() == key;
+    if (!known) {
+      std::string list;
+      for (const char* key : allowed) list += std::string(list.empty() ? "" : ", ") + key;
+      throw InputError(where + ": unknown key '" + item.key() + "' (allowed: " + list + ")");
+    }
+  }
+  for (const char* key : required) {
+    if (!object.contains(key)) throw InputError(where + ": missing key '" + key + "'");
+  }
+}
+
+double finiteNumber(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number()) throw InputError(where + ": expected a number");
+  const double number = value.get<double>();
+  if (!std::isfinite(number)) throw InputError(where + ": expected a finite number");
+  return number;
+}
+
+Eigen::Vector3d finiteVector3(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_array() || value.size() != 3) {
+    throw InputError(where + ": expected an array of 3 numbers");
+  }
+  Eigen::Vector3d vector;
+  for (int axis = 0; axis < 3; ++axis) {
+    vector[axis] = finiteNumber(value[axis], where + "[" + std::to_string(axis) + "]");
+  }
+  return vector;
+}
+
+Patch parsePatch(const nlohmann::json& value, const std::string& where,
+                 std::initializer_list<const char*> extraKeys) {
+  std::vector<const char*> allowed = {"origin", "edge_u", "edge_v"};
+  allowed.insert(allowed.end(), extraKeys.begin(), extraKeys.end());
+  checkKeys(value, where, allowed, {"origin", "edge_u", "edge_v"});
+  return Patch::make(finiteVector3(value["origin"], where + ".origin"),
+                     finiteVector3(value["edge_u"], where + ".edge_u"),
+                     finiteVector3(value["edge_v"], where + ".edge_v"), where);
+}
+
+LinkDescription parseLink(const nlohmann::json& value, const std::string& where) {
+  checkKeys(value, where, {"receiver", "source", "occluders"}, {"receiver", "source"});
+  LinkDescription link{parsePatch(value["receiver"], where + ": receiver"),
+                       parsePatch(value["source"], where + ": source"),
+                       {}};
+  if (value.contains("occluders")) {
+    const auto& occluders = value["occluders"];
+    if (!occluders.is_array()) throw InputError(where + ": occluders: expected an array");
+    for (std::size_t k = 0; k < occluders.size(); ++k) {
+      link.occluders.push_back(
+          parsePatch(occluders[k], where + ": occluders[" + std::to_string(k) + "]"));
+    }
+  }
+  return link;
+}
+
+LinkDescription readLinkFile(const std::filesystem::path& path) {
+  return parseLink(readJsonFile(path), path.string());
+}
+
+SceneLink buildSceneLink(const LinkDescription& description) {
+  SceneLink built;
+  built.scene = std::make_unique<OccluderScene>();
+  for (const Patch& occluder : description.occluders) built.scene->addParallelogram(occluder);
+  built.scene->commit();
+  built.link = Link{description.receiver, description.source, built.scene.get()};
+  return built;
+}
+
+nlohmann::json patchToJson(const Patch& patch) {
+  auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
+  return {{"origin", vector(patch.origin)},
+          {"edge_u", vector(patch.edgeU)},
+          {"edge_v", vector(patch.edgeV)}};
+}
+
+nlohmann::json matrixToJson(const Eigen::MatrixXd& matrix) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index a = 0; a < matrix.rows(); ++a) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index b = 0; b < matrix.cols(); ++b) row.push_back(matrix(a, b));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+}  // namespace radquad

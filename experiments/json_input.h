@@ -1,0 +1,54 @@
+// Strict JSON input: every file radquad reads goes through these helpers, so that unknown
+// keys, wrong types, wrong lengths and non-finite numbers are rejected with a message that
+// names the file and the offending key.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "kernel/coupling.h"
+#include "kernel/occluder_scene.h"
+#include "kernel/patch.h"
+
+namespace radquad {
+
+// Reads and parses a JSON file; InputError names the path when it cannot be read or parsed.
+nlohmann::json readJsonFile(const std::filesystem::path& path);
+
+// Throws InputError when `object` is not an object or has a key outside `allowed`, or misses
+// one of `required`. `where` names the object in messages (e.g. "link.json: receiver").
+void checkKeys(const nlohmann::json& object, const std::string& where,
+               const std::vector<const char*>& allowed, const std::vector<const char*>& required);
+
+double finiteNumber(const nlohmann::json& value, const std::string& where);
+Eigen::Vector3d finiteVector3(const nlohmann::json& value, const std::string& where);
+
+// PATCH = {"origin": [x,y,z], "edge_u": [x,y,z], "edge_v": [x,y,z]}, plus `extraKeys`.
+Patch parsePatch(const nlohmann::json& value, const std::string& where,
+                 std::initializer_list<const char*> extraKeys = {});
+
+// LINK.json = {"receiver": PATCH, "source": PATCH, "occluders": [PATCH, ...]}.
+struct LinkDescription {
+  Patch receiver;
+  Patch source;
+  std::vector<Patch> occluders;
+};
+LinkDescription parseLink(const nlohmann::json& value, const std::string& where);
+LinkDescription readLinkFile(const std::filesystem::path& path);
+
+// A link with its own occluder scene (committed), ready to integrate.
+struct SceneLink {
+  std::unique_ptr<OccluderScene> scene;
+  Link link;
+};
+SceneLink buildSceneLink(const LinkDescription& description);
+
+nlohmann::json patchToJson(const Patch& patch);
+nlohmann::json matrixToJson(const Eigen::MatrixXd& matrix);
+
+}  // namespace radquad

@@ -1,0 +1,168 @@
+#include "kernel/occluder_scene.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace radquad {
+namespace {
+
+void reportEmbreeError(void*, RTCError code, const char* message) {
+  std::fprintf(stderr, "radquad: Embree error %d: %s\n", static_cast<int>(code),
+               message ? message : "");
+}
+
+}  // namespace
+
+RTCDevice embreeDevice() {
+  static RTCDevice device = [] {
+    RTCDevice created = rtcNewDevice(nullptr);
+    if (!created) throw std::runtime_error("cannot create the Embree device");
+    rtcSetDeviceErrorFunction(created, reportEmbreeError, nullptr);
+    return created;
+  }();
+  return device;
+}
+
+void SegmentBatch::clear() {
+  for (auto* column : {&originX, &originY, &originZ, &directionX, &directionY, &directionZ}) {
+    column->clear();
+  }
+}
+
+void SegmentBatch::reserve(std::size_t count) {
+  for (auto* column : {&originX, &originY, &originZ, &directionX, &directionY, &directionZ}) {
+    column->reserve(count);
+  }
+}
+
+void SegmentBatch::push(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
+  originX.push_back(float(origin.x()));
+  originY.push_back(float(origin.y()));
+  originZ.push_back(float(origin.z()));
+  directionX.push_back(float(direction.x()));
+  directionY.push_back(float(direction.y()));
+  directionZ.push_back(float(direction.z()));
+}
+
+OccluderScene::OccluderScene() {
+  scene_ = rtcNewScene(embreeDevice());
+  // Robust traversal: slats and meshes share edges, and a ray through a shared edge must
+  // not slip between two triangles.
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+}
+
+OccluderScene::~OccluderScene() {
+  if (scene_) rtcReleaseScene(scene_);
+}
+
+unsigned OccluderScene::addParallelogram(const Patch& patch) {
+  assert(!committed_);
+  RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_QUAD);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
+  const Eigen::Vector3d corners[4] = {patch.origin, patch.origin + patch.edgeU,
+                                      patch.origin + patch.edgeU + patch.edgeV,
+                                      patch.origin + patch.edgeV};
+  for (int c = 0; c < 4; ++c) {
+    for (int axis = 0; axis < 3; ++axis) vertices[3 * c + axis] = float(corners[c][axis]);
+  }
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
+  for (unsigned c = 0; c < 4; ++c) indices[c] = c;
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  ++geometryCount_;
+  ++primitiveCount_;
+  return id;
+}
+
+unsigned OccluderScene::addTriangleMesh(
+    const std::vector<Eigen::Vector3d>& vertices,
+    const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  assert(!committed_);
+  for (const auto& triangle : triangles) {
+    for (std::uint32_t index : triangle) {
+      if (index >= vertices.size()) {
+        throw std::invalid_argument("triangle mesh index " + std::to_string(index) +
+                                    " is out of range");
+      }
+    }
+  }
+  RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertexBuffer = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    for (int axis = 0; axis < 3; ++axis) vertexBuffer[3 * v + axis] = float(vertices[v][axis]);
+  }
+  auto* indexBuffer = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int corner = 0; corner < 3; ++corner) indexBuffer[3 * t + corner] = triangles[t][corner];
+  }
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  ++geometryCount_;
+  primitiveCount_ += triangles.size();
+  return id;
+}
+
+void OccluderScene::commit() {
+  rtcCommitScene(scene_);
+  committed_ = true;
+}
+
+void OccluderScene::testSegments(const SegmentBatch& segments, std::uint8_t* visible) const {
+  assert(committed_ || empty());
+  const std::size_t count = segments.size();
+  if (empty()) {
+    std::fill(visible, visible + count, std::uint8_t{1});
+    return;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRay16 packet;
+  alignas(64) int valid[16];
+  for (std::size_t start = 0; start < count; start += 16) {
+    const std::size_t lanes = std::min<std::size_t>(16, count - start);
+    for (std::size_t lane = 0; lane < 16; ++lane) {
+      const bool active = lane < lanes;
+      valid[lane] = active ? -1 : 0;
+      const std::size_t k = active ? start + lane : start;
+      packet.org_x[lane] = segments.originX[k];
+      packet.org_y[lane] = segments.originY[k];
+      packet.org_z[lane] = segments.originZ[k];
+      packet.dir_x[lane] = segments.directionX[k];
+      packet.dir_y[lane] = segments.directionY[k];
+      packet.dir_z[lane] = segments.directionZ[k];
+      packet.tnear[lane] = kSegmentEpsilon;
+      packet.tfar[lane] = 1.0f - kSegmentEpsilon;
+      packet.time[lane] = 0.0f;
+      packet.mask[lane] = 0xFFFFFFFFu;
+      packet.id[lane] = 0;
+      packet.flags[lane] = 0;
+    }
+    rtcOccluded16(valid, scene_, &context, &packet);
+    // Embree sets tfar to -inf for every occluded ray.
+    for (std::size_t lane = 0; lane < lanes; ++lane) {
+      visible[start + lane] = packet.tfar[lane] >= 0.0f ? 1 : 0;
+    }
+  }
+}
+
+bool OccluderScene::segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
+  SegmentBatch batch;
+  batch.push(from, to - from);
+  std::uint8_t visible = 0;
+  testSegments(batch, &visible);
+  return visible != 0;
+}
+
+}  // namespace radquad

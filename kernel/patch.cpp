@@ -1,0 +1,49 @@
+#include "kernel/patch.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "kernel/input_error.h"
+
+namespace radquad {
+namespace {
+
+bool allFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+std::string formatVector(const Eigen::Vector3d& v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+  return out.str();
+}
+
+}  // namespace
+
+Patch Patch::make(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
+                  const Eigen::Vector3d& edgeV, const std::string& what) {
+  if (!allFinite(origin) || !allFinite(edgeU) || !allFinite(edgeV)) {
+    throw InputError(what + ": every coordinate must be a finite number");
+  }
+  const Eigen::Vector3d cross = edgeU.cross(edgeV);
+  const double area = cross.norm();
+  const double edgeProduct = edgeU.norm() * edgeV.norm();
+  // A relative test: the sine of the angle between the edges must not vanish.
+  if (!(area > 0.0) || !std::isfinite(area) || area <= 1e-9 * edgeProduct) {
+    throw InputError(what + ": degenerate patch (zero area: edge_u " + formatVector(edgeU) +
+                     " and edge_v " + formatVector(edgeV) + " are zero or parallel)");
+  }
+  Patch patch;
+  patch.origin = origin;
+  patch.edgeU = edgeU;
+  patch.edgeV = edgeV;
+  patch.normal = cross / area;
+  patch.area = area;
+  return patch;
+}
+
+std::string Patch::toString() const {
+  return "Patch{origin " + formatVector(origin) + ", edge_u " + formatVector(edgeU) +
+         ", edge_v " + formatVector(edgeV) + "}";
+}
+
+}  // namespace radquad

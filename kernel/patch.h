@@ -1,0 +1,32 @@
+// A planar parallelogram patch (DESIGN.md, "Mathematical conventions"):
+//   x(u,v) = origin + u edgeU + v edgeV,  (u,v) in [0,1]^2,
+//   normal n = (edgeU x edgeV) / |edgeU x edgeV|,  area A = |edgeU x edgeV|.
+// A patch is one-sided: it emits and receives on the side its normal points to.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+
+namespace radquad {
+
+struct Patch {
+  Eigen::Vector3d origin;
+  Eigen::Vector3d edgeU;
+  Eigen::Vector3d edgeV;
+  Eigen::Vector3d normal;
+  double area = 0.0;
+
+  // Builds a validated patch. `what` names the patch in error messages
+  // (for example "source" or "occluders[3]"). Throws InputError when a coordinate is not
+  // finite or the parallelogram is degenerate (zero area, or edges parallel to within 1e-9).
+  static Patch make(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
+                    const Eigen::Vector3d& edgeV, const std::string& what);
+
+  Eigen::Vector3d pointAt(double u, double v) const { return origin + u * edgeU + v * edgeV; }
+  Eigen::Vector3d centre() const { return pointAt(0.5, 0.5); }
+
+  std::string toString() const;
+};
+
+}  // namespace radquad

@@ -1,0 +1,37 @@
+// Quadrature points handed to the kernel. The kernel knows no rule: it integrates whatever
+// weighted points it is given (weights sum to 1 over the unit square or the unit 4-cube;
+// DESIGN.md, "Mathematical conventions").
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace radquad {
+
+// Points (u,v) on one patch's parameter square with weights; the two halves of a product rule.
+struct PatchSamples {
+  std::vector<double> u, v, weight;
+
+  std::size_t size() const { return u.size(); }
+  void push(double pu, double pv, double w) {
+    u.push_back(pu);
+    v.push_back(pv);
+    weight.push_back(w);
+  }
+};
+
+// Points (s,t,u,v) on [0,1]^4 = (receiver u, receiver v, source u, source v) with weights.
+struct LinkSamples {
+  std::vector<double> s, t, u, v, weight;
+
+  std::size_t size() const { return s.size(); }
+  void push(double ps, double pt, double pu, double pv, double w) {
+    s.push_back(ps);
+    t.push_back(pt);
+    u.push_back(pu);
+    v.push_back(pv);
+    weight.push_back(w);
+  }
+};
+
+}  // namespace radquad

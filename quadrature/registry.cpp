@@ -1,0 +1,74 @@
+#include "quadrature/registry.h"
+
+#include <functional>
+
+#include "kernel/input_error.h"
+#include "quadrature/rules/gauss_product.h"
+
+namespace radquad {
+namespace {
+
+struct NamedRule {
+  const char* name;
+  std::function<std::shared_ptr<const Rule>()> make;
+};
+
+struct ParametrisedFamily {
+  const char* prefix;  // the text before the colon
+  const char* form;    // how users write it
+  std::function<std::shared_ptr<const Rule>(const std::string&)> make;
+};
+
+// The catalogue of DESIGN.md, "The paper's rules".
+const std::vector<NamedRule>& namedCatalogue() {
+  static const std::vector<NamedRule> catalogue = {
+      {"FullGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 3, 3}, "FullGauss"); }},
+      {"LinSrcGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 2, 2}, "LinSrcGauss"); }},
+      {"ConstSrcGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 1, 1}, "ConstSrcGauss"); }},
+  };
+  return catalogue;
+}
+
+const std::vector<ParametrisedFamily>& parametrisedCatalogue() {
+  static const std::vector<ParametrisedFamily> catalogue = {
+      {"Gauss", "Gauss:RsxRtxSuxSv", makeGaussProductRule},
+  };
+  return catalogue;
+}
+
+std::string validNames() {
+  std::string text;
+  for (const auto& rule : namedCatalogue()) text += std::string(text.empty() ? "" : ", ") + rule.name;
+  for (const auto& family : parametrisedCatalogue()) text += std::string(", ") + family.form;
+  return text;
+}
+
+}  // namespace
+
+std::shared_ptr<const Rule> findRule(std::string_view name) {
+  for (const auto& rule : namedCatalogue()) {
+    if (name == rule.name) return rule.make();
+  }
+  const auto colon = name.find(':');
+  if (colon != std::string_view::npos) {
+    const std::string_view prefix = name.substr(0, colon);
+    for (const auto& family : parametrisedCatalogue()) {
+      if (prefix == family.prefix) return family.make(std::string(name.substr(colon + 1)));
+    }
+  }
+  throw InputError("unknown rule '" + std::string(name) + "'; valid rules: " + validNames());
+}
+
+std::vector<std::shared_ptr<const Rule>> namedRules() {
+  std::vector<std::shared_ptr<const Rule>> rules;
+  for (const auto& rule : namedCatalogue()) rules.push_back(rule.make());
+  return rules;
+}
+
+std::vector<std::string> parametrisedRuleForms() {
+  std::vector<std::string> forms;
+  for (const auto& family : parametrisedCatalogue()) forms.push_back(family.form);
+  return forms;
+}
+
+}  // namespace radquad

@@ -1,0 +1,53 @@
+// The Rule interface: a quadrature rule on [0,1]^4 with coordinates (s, t, u, v) =
+// (receiver u, receiver v, source u, source v) and weights summing to 1 (DESIGN.md).
+//
+// A rule is data with a name, a sample count, a declared polynomial degree (none for random
+// rules) and a citation. Product rules keep their structure: they hand out a receiver point
+// set and a source point set, and the kernel is evaluated on every pair, so the coupling
+// code can share positions and basis values. Other rules hand out a list of 4D points.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "kernel/sample_points.h"
+
+namespace radquad {
+
+// One draw of a rule's points. Deterministic rules return the same draw for every seed.
+struct RuleSamples {
+  bool isProduct = false;
+  PatchSamples receiver;  // product rules: points on the receiver's parameter square
+  PatchSamples source;    // product rules: points on the source's parameter square
+  LinkSamples points;     // other rules: points on [0,1]^4
+
+  std::size_t size() const { return isProduct ? receiver.size() * source.size() : points.size(); }
+};
+
+class Rule {
+ public:
+  virtual ~Rule() = default;
+
+  // The name users type, as in DESIGN.md, "The paper's rules" (e.g. "FullGauss", "Gauss:3x3x2x2").
+  virtual std::string name() const = 0;
+  // Kernel evaluations per link.
+  virtual std::size_t sampleCount() const = 0;
+  // The total polynomial degree on [0,1]^4 integrated exactly, and not the next one; none for
+  // random rules.
+  virtual std::optional<int> degree() const = 0;
+  // The family (e.g. "Gauss-Legendre product", "Stroud", "Monte Carlo").
+  virtual std::string family() const = 0;
+  // Where the rule comes from.
+  virtual std::string citation() const = 0;
+  // Whether the points depend on the seed.
+  virtual bool isRandom() const { return false; }
+
+  // The points for one trial. Random rules must give the same points for the same seed on
+  // every machine and thread count.
+  virtual RuleSamples samples(std::uint64_t seed) const = 0;
+
+  std::string toString() const;
+};
+
+}  // namespace radquad
