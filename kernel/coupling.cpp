@@ -164,19 +164,37 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
     if (positive == pairs) {
       // Every pair faces the other (the usual case): one ray per pair in pair order, filled
       // and applied without branches.
-      segments_.resize(pairs);
+      for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_,
+                           &rayDirectionY_, &rayDirectionZ_, &rayFar_}) {
+        column->resize(pairs);
+      }
       for (std::size_t i = 0; i < nr; ++i) {
+        const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
+        float* __restrict ox = rayOriginX_.data() + i * ns;
+        float* __restrict oy = rayOriginY_.data() + i * ns;
+        float* __restrict oz = rayOriginZ_.data() + i * ns;
+        float* __restrict dx = rayDirectionX_.data() + i * ns;
+        float* __restrict dy = rayDirectionY_.data() + i * ns;
+        float* __restrict dz = rayDirectionZ_.data() + i * ns;
         for (std::size_t j = 0; j < ns; ++j) {
-          segments_.set(i * ns + j, receiverX_[i], receiverY_[i], receiverZ_[i],
-                        sourceX_[j] - receiverX_[i], sourceY_[j] - receiverY_[i],
-                        sourceZ_[j] - receiverZ_[i]);
+          ox[j] = float(xi);
+          oy[j] = float(yi);
+          oz[j] = float(zi);
+          dx[j] = float(sourceX_[j] - xi);
+          dy[j] = float(sourceY_[j] - yi);
+          dz[j] = float(sourceZ_[j] - zi);
         }
       }
+      segments_.assign(pairs, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
+                       rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
       link.occluders->trace(segments_);
+      segments_.farEnds(rayFar_.data());
       std::uint64_t blocked = 0;
+      const float* __restrict far = rayFar_.data();
+      double* __restrict kernel = kernel_.data();
       for (std::size_t k = 0; k < pairs; ++k) {
-        const bool visible = segments_.visible(k);
-        kernel_[k] = visible ? kernel_[k] : 0.0;
+        const bool visible = far[k] >= 0.0f;
+        kernel[k] = visible ? kernel[k] : 0.0;
         blocked += visible ? 0 : 1;
       }
       result.raysCast = pairs;

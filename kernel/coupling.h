@@ -79,6 +79,8 @@ class CouplingAccumulator {
   std::vector<double> kernel_;
   std::vector<double> partial_;
   std::vector<std::uint32_t> rayPairs_;
+  std::vector<float> rayOriginX_, rayOriginY_, rayOriginZ_;
+  std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_, rayFar_;
   SegmentBatch segments_;
   Eigen::MatrixXd receiverBlock_, sourceBlock_;
 };

@@ -52,6 +52,31 @@ void SegmentBatch::push(const Eigen::Vector3d& origin, const Eigen::Vector3d& di
   set(k, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(), direction.z());
 }
 
+void SegmentBatch::assign(std::size_t count, const float* originX, const float* originY,
+                          const float* originZ, const float* directionX, const float* directionY,
+                          const float* directionZ) {
+  resize(count);
+  for (std::size_t p = 0; p < packetCount(); ++p) {
+    const std::size_t start = p * 16;
+    const std::size_t lanes = std::min<std::size_t>(16, count - start);
+    RTCRay16& packet = packets_[p];
+    std::copy_n(originX + start, lanes, packet.org_x);
+    std::copy_n(originY + start, lanes, packet.org_y);
+    std::copy_n(originZ + start, lanes, packet.org_z);
+    std::copy_n(directionX + start, lanes, packet.dir_x);
+    std::copy_n(directionY + start, lanes, packet.dir_y);
+    std::copy_n(directionZ + start, lanes, packet.dir_z);
+    std::fill_n(packet.tfar, 16, 1.0f - kSegmentEpsilon);
+  }
+}
+
+void SegmentBatch::farEnds(float* far) const {
+  for (std::size_t p = 0; p < packetCount(); ++p) {
+    const std::size_t start = p * 16;
+    std::copy_n(packets_[p].tfar, std::min<std::size_t>(16, count_ - start), far + start);
+  }
+}
+
 OccluderScene::OccluderScene() {
   scene_ = rtcNewScene(embreeDevice());
   // Robust traversal: slats and meshes share edges, and a ray through a shared edge must

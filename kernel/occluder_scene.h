@@ -41,6 +41,12 @@ class SegmentBatch {
     packet.dir_z[lane] = float(dz);
     packet.tfar[lane] = 1.0f - kSegmentEpsilon;  // Embree sets it to -inf when blocked
   }
+  // Sets segments 0..count-1 from structure-of-arrays columns, 16 lanes at a time.
+  void assign(std::size_t count, const float* originX, const float* originY, const float* originZ,
+              const float* directionX, const float* directionY, const float* directionZ);
+  // After OccluderScene::trace: writes each segment's far end to far[k]; negative when the
+  // segment was blocked.
+  void farEnds(float* far) const;
   // After OccluderScene::trace: whether segment k was unobstructed.
   bool visible(std::size_t k) const { return packets_[k >> 4].tfar[k & 15] >= 0.0f; }
 
