@@ -49,7 +49,8 @@ void placePoints(const Patch& patch, const double* u, const double* v, std::size
 
 // cos(theta) cos(theta') |d|^2 / |d|^4 with d = y - x:
 // n_r.d = n_r.y - n_r.x and -n_s.d = n_s.x - n_s.y.
-inline double kernelTimesPi(double dx, double dy, double dz, double receiverCos, double sourceCos) {
+inline double kernelTimesPi(double dx, double dy, double dz, double receiverCos,
+                            double sourceCos) {
   const double r2 = dx * dx + dy * dy + dz * dz;
   const double c = std::max(receiverCos, 0.0) * std::max(sourceCos, 0.0);
   return c / (r2 * r2);
@@ -120,8 +121,8 @@ void CouplingAccumulator::castRays(const Link& link, std::vector<double>& kernel
 
 void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver,
                                   const WeightedBasisTable& receiverBasis,
-                                  const PatchSamples& source, const WeightedBasisTable& sourceBasis,
-                                  LinkIntegral& result) {
+                                  const PatchSamples& source,
+                                  const WeightedBasisTable& sourceBasis, LinkIntegral& result) {
   assert(receiverBasis.functions == sourceBasis.functions);
   assert(receiverBasis.points() == receiver.size() && sourceBasis.points() == source.size());
   const std::size_t nr = receiver.size();
@@ -206,13 +207,14 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
   const Patch& s = link.source;
   placePoints(r, samples.s.data(), samples.t.data(), count, s.normal, receiverX_, receiverY_,
               receiverZ_, receiverNormalDot_, receiverSourceDot_);
-  placePoints(s, samples.u.data(), samples.v.data(), count, r.normal, sourceX_, sourceY_, sourceZ_,
-              sourceNormalDot_, sourceReceiverDot_);
+  placePoints(s, samples.u.data(), samples.v.data(), count, r.normal, sourceX_, sourceY_,
+              sourceZ_, sourceNormalDot_, sourceReceiverDot_);
   kernel_.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
-    kernel_[k] = kernelTimesPi(
-        sourceX_[k] - receiverX_[k], sourceY_[k] - receiverY_[k], sourceZ_[k] - receiverZ_[k],
-        sourceReceiverDot_[k] - receiverNormalDot_[k], receiverSourceDot_[k] - sourceNormalDot_[k]);
+    kernel_[k] = kernelTimesPi(sourceX_[k] - receiverX_[k], sourceY_[k] - receiverY_[k],
+                               sourceZ_[k] - receiverZ_[k],
+                               sourceReceiverDot_[k] - receiverNormalDot_[k],
+                               receiverSourceDot_[k] - sourceNormalDot_[k]);
   }
   result.raysCast = 0;
   result.raysBlocked = 0;
