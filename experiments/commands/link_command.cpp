@@ -98,11 +98,14 @@ void addLinkCommand(CLI::App& app) {
   auto options = std::make_shared<LinkOptions>();
   CLI::App* command = app.add_subcommand(
       "link", "Integrate the coupling of one link with one rule; prints JSON on stdout");
-  command->add_option("link", options->linkPath,
-                      "LINK.json: {\"receiver\": PATCH, \"source\": PATCH, \"occluders\": [PATCH...]}")
+  command
+      ->add_option("link", options->linkPath,
+                   "LINK.json: {\"receiver\": PATCH, \"source\": PATCH, \"occluders\": [PATCH...]}")
       ->required();
   command->add_option("--rule", options->ruleName, "Rule name (see `radquad rules`)")->required();
-  command->add_option("--degree", options->degree, "Basis degree d, 0..8 ((d+1)^2 functions per patch)")
+  command
+      ->add_option("--degree", options->degree,
+                   "Basis degree d, 0..8 ((d+1)^2 functions per patch)")
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of random rules")->capture_default_str();
   command
