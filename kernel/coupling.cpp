@@ -43,6 +43,31 @@ inline double kernelTimesPi(double dx, double dy, double dz, double receiverCos,
   return c / (r2 * r2);
 }
 
+// phi_k at `count` points, k = 0..degree, written out[k * stride + r]: Bonnet's recurrence
+// (k+1) P_{k+1}(y) = (2k+1) y P_k(y) - k P_{k-1}(y), y = 2x - 1, then phi_k = sqrt(2k+1) P_k,
+// as shiftedLegendreValues, but across points so that it vectorises.
+void legendreAcrossPoints(int degree, const double* __restrict x, std::size_t count,
+                          std::size_t stride, double* __restrict out) {
+  for (std::size_t r = 0; r < count; ++r) out[r] = 1.0;
+  if (degree >= 1) {
+    for (std::size_t r = 0; r < count; ++r) out[stride + r] = 2.0 * x[r] - 1.0;
+  }
+  for (int k = 1; k < degree; ++k) {
+    const double a = 2.0 * k + 1.0, c = double(k), d = k + 1.0;
+    const double* __restrict previous = out + std::size_t(k - 1) * stride;
+    const double* __restrict current = out + std::size_t(k) * stride;
+    double* __restrict next = out + std::size_t(k + 1) * stride;
+    for (std::size_t r = 0; r < count; ++r) {
+      next[r] = (a * (2.0 * x[r] - 1.0) * current[r] - c * previous[r]) / d;
+    }
+  }
+  for (int k = 1; k <= degree; ++k) {
+    const double scale = std::sqrt(2.0 * k + 1.0);
+    double* __restrict row = out + std::size_t(k) * stride;
+    for (std::size_t r = 0; r < count; ++r) row[r] *= scale;
+  }
+}
+
 }  // namespace
 
 WeightedBasisTable makeWeightedBasisTable(const PatchSamples& samples, int degree) {
@@ -269,20 +294,45 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
   } else {
     // Blocks keep the basis tables in cache: coupling += receiverBlock^T sourceBlock with
     // receiverBlock(k, a) = w_k G_k phi_a(s_k, t_k) and sourceBlock(k, b) = phi_b(u_k, v_k).
-    constexpr std::size_t kBlock = 512;
+    // The one-dimensional values are computed across the block's points (vectorised), then
+    // the tensor products column by column (column-major: a column is contiguous in k).
+    constexpr std::size_t kBlock = 256;
+    const int n1 = degree + 1;
     receiverBlock_.resize(kBlock, functions);
     sourceBlock_.resize(kBlock, functions);
-    double values[basisFunctionCount(kMaxBasisDegree)];
+    legendre_.resize(4 * std::size_t(n1) * kBlock);
+    weightedKernel_.resize(kBlock);
+    double* alongS = legendre_.data();
+    double* alongT = alongS + std::size_t(n1) * kBlock;
+    double* alongU = alongT + std::size_t(n1) * kBlock;
+    double* alongV = alongU + std::size_t(n1) * kBlock;
     for (std::size_t start = 0; start < count; start += kBlock) {
       const std::size_t rows = std::min(kBlock, count - start);
-      for (std::size_t row = 0; row < rows; ++row) {
-        const std::size_t k = start + row;
-        const double scale = samples.weight[k] * kernel_[k];
-        tensorBasisValues(degree, samples.s[k], samples.t[k], values);
-        for (int a = 0; a < functions; ++a)
-          receiverBlock_(Eigen::Index(row), a) = scale * values[a];
-        tensorBasisValues(degree, samples.u[k], samples.v[k], values);
-        for (int b = 0; b < functions; ++b) sourceBlock_(Eigen::Index(row), b) = values[b];
+      legendreAcrossPoints(degree, samples.s.data() + start, rows, kBlock, alongS);
+      legendreAcrossPoints(degree, samples.t.data() + start, rows, kBlock, alongT);
+      legendreAcrossPoints(degree, samples.u.data() + start, rows, kBlock, alongU);
+      legendreAcrossPoints(degree, samples.v.data() + start, rows, kBlock, alongV);
+      {
+        const double* __restrict w = samples.weight.data() + start;
+        const double* __restrict g = kernel_.data() + start;
+        double* __restrict wg = weightedKernel_.data();
+        for (std::size_t row = 0; row < rows; ++row) wg[row] = w[row] * g[row];
+      }
+      for (int i = 0; i < n1; ++i) {
+        for (int j = 0; j < n1; ++j) {
+          const int a = i * n1 + j;
+          const double* __restrict ls = alongS + std::size_t(i) * kBlock;
+          const double* __restrict lt = alongT + std::size_t(j) * kBlock;
+          const double* __restrict lu = alongU + std::size_t(i) * kBlock;
+          const double* __restrict lv = alongV + std::size_t(j) * kBlock;
+          const double* __restrict wg = weightedKernel_.data();
+          double* __restrict receiverColumn = receiverBlock_.col(a).data();
+          double* __restrict sourceColumn = sourceBlock_.col(a).data();
+          for (std::size_t row = 0; row < rows; ++row) {
+            receiverColumn[row] = wg[row] * (ls[row] * lt[row]);
+            sourceColumn[row] = lu[row] * lv[row];
+          }
+        }
       }
       const auto n = Eigen::Index(rows);
       result.coupling.noalias() += receiverBlock_.topRows(n).transpose() * sourceBlock_.topRows(n);
