@@ -6,7 +6,7 @@
 #include "kernel/coupling.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
-#include "tests/kernel/analytic_form_factors.h"
+#include "tests/support/analytic_form_factors.h"
 #include "tests/kernel/test_links.h"
 
 namespace radquad {
@@ -14,9 +14,9 @@ namespace {
 
 using testing::opposedReceiver;
 using testing::opposedSource;
-using testing::parallelRectanglesFormFactor;
+using analytic::parallelRectangles;
 using testing::perpendicularReceiver;
-using testing::perpendicularRectanglesFormFactor;
+using analytic::perpendicularRectangles;
 using testing::perpendicularSource;
 
 double formFactor(const Link& link, const std::string& rule, int degree = 0) {
@@ -26,8 +26,8 @@ double formFactor(const Link& link, const std::string& rule, int degree = 0) {
 TEST(AnalyticFormFactors, HowellCatalogueValues) {
   // Published values: unit squares, opposed at distance 1: 0.1998; perpendicular with a
   // common edge: 0.2000 (Howell C-11, C-14; Cohen and Wallace 1993, table 4.1).
-  EXPECT_NEAR(parallelRectanglesFormFactor(1, 1, 1), 0.1998249, 5e-8);
-  EXPECT_NEAR(perpendicularRectanglesFormFactor(1, 1, 1), 0.2000438, 5e-7);
+  EXPECT_NEAR(parallelRectangles(1, 1, 1), 0.1998249, 5e-8);
+  EXPECT_NEAR(perpendicularRectangles(1, 1, 1), 0.2000438, 5e-7);
 }
 
 struct OpposedCase {
@@ -42,7 +42,7 @@ class ParallelOpposed : public ::testing::TestWithParam<OpposedCase> {};
 TEST_P(ParallelOpposed, GaussProductMatchesHowell) {
   const auto [a, b, c] = GetParam();
   const Link link{opposedReceiver(a, b), opposedSource(a, b, c), nullptr};
-  const double exact = parallelRectanglesFormFactor(a, b, c);
+  const double exact = parallelRectangles(a, b, c);
   EXPECT_NEAR(formFactor(link, "Gauss:8x8x8x8"), exact, 1e-7 * exact)
       << "a=" << a << " b=" << b << " c=" << c;
   EXPECT_NEAR(formFactor(link, "FullGauss"), exact, 2e-3 * exact)
@@ -61,7 +61,7 @@ INSTANTIATE_TEST_SUITE_P(Kernel, ParallelOpposed,
 TEST(PerpendicularSharedEdge, GaussProductConvergesToHowell) {
   const double l = 1.0, w = 0.7, h = 1.3;
   const Link link{perpendicularReceiver(l, w), perpendicularSource(l, h), nullptr};
-  const double exact = perpendicularRectanglesFormFactor(l, w, h);
+  const double exact = perpendicularRectangles(w, h, l);
   double previousError = INFINITY;
   for (int n : {8, 16, 32, 64}) {
     const std::string rule = "Gauss:" + std::to_string(n) + "x" + std::to_string(n) + "x" +
