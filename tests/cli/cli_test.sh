@@ -78,7 +78,37 @@ for r in rules:
 PY
 check rules_json $?
 
-for command in "" link rules; do
+# Trials of a random rule: T runs with seeds S..S+T-1, their mean and standard deviation.
+"$radquad" link "$fixtures/good_link.json" --rule Stratified --trials 40 --seed 5 >"$scratch/trials.json"
+check trials_status $?
+"$python" - "$scratch/trials.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+assert out["trials"] == 40 and out["seeds"] == [5, 44], out["seeds"]
+sd = out["standard_deviation"]["coupling"][0][0]
+# Half of Howell's 0.1998249 gets through the fixture's symmetric half blocker; the mean of 40
+# trials lies within 4 standard errors of it.
+assert abs(out["mean_coupling"][0][0] - 0.1998249 / 2) < 4 * sd / 40 ** 0.5, out["mean_coupling"]
+PY
+check trials_json $?
+expect_error zero_trials "--trials 0: expected at least 1" link "$fixtures/good_link.json" --rule Stratified --trials 0
+
+# The reference with its standard error.
+"$radquad" reference "$fixtures/good_link.json" --degree 1 --seed 2 >"$scratch/reference.json"
+check reference_status $?
+"$python" - "$scratch/reference.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+assert out["samples"] == 10000
+k, se = out["coupling"], out["standard_error"]["coupling"]
+assert len(k) == 4 and len(se) == 4 and all(len(row) == 4 for row in se)
+assert 0 < out["standard_error"]["form_factor"] < 0.01 * out["form_factor"]
+assert abs(out["form_factor"] - 0.1998249 / 2) < 5 * out["standard_error"]["form_factor"]
+PY
+check reference_json $?
+expect_error reference_bad_file "malformed.json: malformed JSON" reference "$fixtures/malformed.json"
+
+for command in "" link rules reference; do
   "$radquad" $command --help >/dev/null 2>&1
   check "help_$command" $?
 done
