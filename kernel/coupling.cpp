@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "kernel/legendre_basis.h"
@@ -67,6 +68,64 @@ void legendreAcrossPoints(int degree, const double* __restrict x, std::size_t co
     for (std::size_t r = 0; r < count; ++r) row[r] *= scale;
   }
 }
+
+// coupling (column-major F x F) += sum over the block's points p of
+//   wg_p phi_i(s_p) phi_j(t_p) * phi_k(u_p) phi_l(v_p),  a = i*N1 + j, b = k*N1 + l,
+// for N1 = d + 1 known at compile time. The source products are formed once per block; each
+// receiver function's values are formed on the fly and multiplied into F accumulators of 8
+// lanes each, which stay in registers (F <= 16). `rows` is a multiple of 8; padded rows carry
+// zeros.
+template <int N1>
+void contractScatteredBlock(std::size_t rows, std::size_t stride, const double* __restrict wg,
+                            const double* __restrict alongS, const double* __restrict alongT,
+                            const double* __restrict alongU, const double* __restrict alongV,
+                            double* __restrict sourceProducts, double* __restrict coupling) {
+  constexpr int F = N1 * N1;
+  for (int k = 0; k < N1; ++k) {
+    for (int l = 0; l < N1; ++l) {
+      const double* __restrict lu = alongU + std::size_t(k) * stride;
+      const double* __restrict lv = alongV + std::size_t(l) * stride;
+      double* __restrict column = sourceProducts + std::size_t(k * N1 + l) * stride;
+      for (std::size_t p = 0; p < rows; ++p) column[p] = lu[p] * lv[p];
+    }
+  }
+  // Eight-lane vectors (GCC/Clang vector extension), so the F accumulators are registers.
+  typedef double Lanes __attribute__((vector_size(64)));
+  auto load = [](const double* from) {
+    Lanes lanes;
+    std::memcpy(&lanes, from, sizeof(lanes));
+    return lanes;
+  };
+  for (int i = 0; i < N1; ++i) {
+    for (int j = 0; j < N1; ++j) {
+      const double* __restrict ls = alongS + std::size_t(i) * stride;
+      const double* __restrict lt = alongT + std::size_t(j) * stride;
+      Lanes accumulators[F];
+      for (int b = 0; b < F; ++b) accumulators[b] = Lanes{};
+      for (std::size_t p = 0; p < rows; p += 8) {
+        const Lanes receiver = load(wg + p) * load(ls + p) * load(lt + p);
+#pragma GCC unroll 16
+        for (int b = 0; b < F; ++b) {
+          accumulators[b] += receiver * load(sourceProducts + std::size_t(b) * stride + p);
+        }
+      }
+      const int a = i * N1 + j;
+      for (int b = 0; b < F; ++b) {
+        double sum = 0.0;
+        for (int lane = 0; lane < 8; ++lane) sum += accumulators[b][lane];
+        coupling[std::size_t(b) * F + a] += sum;
+      }
+    }
+  }
+}
+
+using ScatteredContractFunction = void (*)(std::size_t, std::size_t, const double*, const double*,
+                                           const double*, const double*, const double*, double*,
+                                           double*);
+
+// Indexed by basis degree 1..3; higher degrees use a general matrix product.
+constexpr ScatteredContractFunction kScatteredContract[4] = {
+    nullptr, contractScatteredBlock<2>, contractScatteredBlock<3>, contractScatteredBlock<4>};
 
 }  // namespace
 
@@ -298,10 +357,13 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
     // the tensor products column by column (column-major: a column is contiguous in k).
     constexpr std::size_t kBlock = 256;
     const int n1 = degree + 1;
-    receiverBlock_.resize(kBlock, functions);
-    sourceBlock_.resize(kBlock, functions);
+    if (degree > 3) {
+      receiverBlock_.resize(kBlock, functions);
+      sourceBlock_.resize(kBlock, functions);
+    }
     legendre_.resize(4 * std::size_t(n1) * kBlock);
     weightedKernel_.resize(kBlock);
+    sourceProducts_.resize(std::size_t(functions) * kBlock);
     double* alongS = legendre_.data();
     double* alongT = alongS + std::size_t(n1) * kBlock;
     double* alongU = alongT + std::size_t(n1) * kBlock;
@@ -317,6 +379,20 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
         const double* __restrict g = kernel_.data() + start;
         double* __restrict wg = weightedKernel_.data();
         for (std::size_t row = 0; row < rows; ++row) wg[row] = w[row] * g[row];
+      }
+      if (degree <= 3) {
+        // Pad to whole vectors of 8 with zero weights and zero basis values.
+        const std::size_t padded = (rows + 7) / 8 * 8;
+        for (std::size_t row = rows; row < padded; ++row) {
+          weightedKernel_[row] = 0.0;
+          for (int k = 0; k < n1; ++k) {
+            for (double* along : {alongS, alongT, alongU, alongV})
+              along[std::size_t(k) * kBlock + row] = 0.0;
+          }
+        }
+        kScatteredContract[degree](padded, kBlock, weightedKernel_.data(), alongS, alongT, alongU,
+                                   alongV, sourceProducts_.data(), result.coupling.data());
+        continue;
       }
       for (int i = 0; i < n1; ++i) {
         for (int j = 0; j < n1; ++j) {

@@ -83,7 +83,7 @@ class CouplingAccumulator {
   std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_, rayFar_;
   SegmentBatch segments_;
   Eigen::MatrixXd receiverBlock_, sourceBlock_;
-  std::vector<double> legendre_, weightedKernel_;
+  std::vector<double> legendre_, weightedKernel_, sourceProducts_;
 };
 
 }  // namespace radquad
