@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   radquad::addLinkCommand(app);
   radquad::addRulesCommand(app);
+  radquad::addStudyCommand(app);
+  radquad::addFiguresCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {
