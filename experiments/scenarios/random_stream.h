@@ -26,9 +26,9 @@ inline std::uint64_t deriveSeed(std::uint64_t seed, std::initializer_list<std::u
   return state;
 }
 
-class RandomStream {
+class ScenarioRandom {
  public:
-  explicit RandomStream(std::uint64_t seed) : state_(seed) {}
+  explicit ScenarioRandom(std::uint64_t seed) : state_(seed) {}
 
   std::uint64_t next() {
     state_ += 0x9e3779b97f4a7c15ULL;

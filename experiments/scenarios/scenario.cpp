@@ -74,7 +74,7 @@ Patch centredPatch(const Eigen::Vector3d& centre, const Eigen::Vector3d& e1,
   return Patch::make(centre - 0.5 * w * e1 - 0.5 * h * e2, w * e1, h * e2, what);
 }
 
-Eigen::Vector3d randomUnitInPlane(RandomStream& random, const Eigen::Vector3d& e1,
+Eigen::Vector3d randomUnitInPlane(ScenarioRandom& random, const Eigen::Vector3d& e1,
                                   const Eigen::Vector3d& e2) {
   const double angle = random.uniform(0.0, 2.0 * std::numbers::pi);
   return std::cos(angle) * e1 + std::sin(angle) * e2;
@@ -91,7 +91,7 @@ bool inFrontOf(const Patch& patch, const Patch& other, double margin) {
   return true;
 }
 
-void placePatches(const GeometryRanges& ranges, RandomStream& random, GeneratedLink& link) {
+void placePatches(const GeometryRanges& ranges, ScenarioRandom& random, GeneratedLink& link) {
   double a, b, c, e;
   if (random.uniform() < ranges.mixedFraction) {
     a = random.logUniform(ranges.minSide, ranges.maxSide);
@@ -154,7 +154,7 @@ void placePatches(const GeometryRanges& ranges, RandomStream& random, GeneratedL
 
 // A parallelogram across the beam at fraction `along` from the receiver's centre to the
 // source's, offset laterally, spun and tilted by up to 30 degrees out of the cross-section.
-Patch beamBlocker(RandomStream& random, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+Patch beamBlocker(ScenarioRandom& random, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                   double along, double lateral, double w, double h) {
   const Eigen::Vector3d axis = (to - from).normalized();
   const auto [p, q] = planeAxes(axis);
@@ -169,7 +169,7 @@ Patch beamBlocker(RandomStream& random, const Eigen::Vector3d& from, const Eigen
   return centredPatch(centre, u1, u2, w, h, "blocker");
 }
 
-void placeOccluders(const GeometryRanges& ranges, RandomStream& random, GeneratedLink& link) {
+void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, GeneratedLink& link) {
   link.occluderKind = ranges.occluders[random.index(ranges.occluders.size())];
   const Eigen::Vector3d from = link.receiver.centre();
   const Eigen::Vector3d to = link.source.centre();
@@ -325,7 +325,7 @@ std::unique_ptr<OccluderScene> GeneratedLink::buildScene() const {
 }
 
 GeneratedLink generateLink(const GeometryRanges& ranges, LinkClass linkClass, std::uint64_t seed) {
-  RandomStream random(seed);
+  ScenarioRandom random(seed);
   GeneratedLink link;
   placePatches(ranges, random, link);
   if (linkClass == LinkClass::partial) placeOccluders(ranges, random, link);

@@ -1,6 +1,7 @@
 #include "experiments/study/study_config.h"
 
 #include "experiments/json_input.h"
+#include "experiments/study/reference_estimate.h"
 #include "kernel/input_error.h"
 #include "quadrature/registry.h"
 
@@ -69,8 +70,8 @@ StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& whe
   if (value.contains("trials"))
     config.trials = positiveInteger(value["trials"], where + ": trials", 100000);
   if (value.contains("reference"))
-    config.reference = ruleName(value["reference"], where + ": reference");
-  if (value.contains("gold")) config.gold = ruleName(value["gold"], where + ": gold");
+    config.reference = parseReferenceOptions(value["reference"], where + ": reference");
+  if (value.contains("gold")) config.gold = parseGoldOptions(value["gold"], where + ": gold");
   if (value.contains("visible_fraction")) {
     const auto& range = value["visible_fraction"];
     if (!range.is_array() || range.size() != 2) {
@@ -106,8 +107,8 @@ nlohmann::json studyConfigToJson(const StudyConfig& config) {
           {"classes", classes},
           {"rules", config.rules},
           {"trials", config.trials},
-          {"reference", config.reference},
-          {"gold", config.gold},
+          {"reference", referenceOptionsToJson(config.reference)},
+          {"gold", goldOptionsToJson(config.gold)},
           {"visible_fraction", {config.minVisibleFraction, config.maxVisibleFraction}},
           {"max_candidates_per_link", config.maxCandidatesPerLink},
           {"geometry", geometryRangesToJson(config.geometry)}};

@@ -6,8 +6,10 @@
 //   classes     {"partial": N} and/or {"unoccluded": N}: links wanted per class; required
 //   rules       rule names as `radquad rules` lists them; required
 //   trials      independent trials of each random rule per link (default 10)
-//   reference   the rule errors are measured against (default "Reference")
-//   gold        the denser rule used with --gold (default "Stratified:30")
+//   reference   the paper's reference: {"strata_per_axis": 10, "replicates": 10}; the
+//               replicates (independent draws) estimate its own standard error
+//   gold        the gold reference used with --gold: {"tolerance": 1e-9, "dense_strata": 24,
+//               "dense_replicates": 16} (reference/gold_reference.h)
 //   visible_fraction  [low, high]: a partial link's reference visible fraction must lie
 //               strictly inside (default [0.05, 0.95])
 //   max_candidates_per_link  give up on a class after N times its link count of candidates
@@ -24,6 +26,8 @@
 #include <vector>
 
 #include "experiments/scenarios/scenario.h"
+#include "reference/gold_reference.h"
+#include "reference/stratified_reference.h"
 
 namespace radquad {
 
@@ -35,8 +39,8 @@ struct StudyConfig {
   std::vector<std::pair<LinkClass, int>> classes;  // in the order unoccluded, partial
   std::vector<std::string> rules;
   int trials = 10;
-  std::string reference = "Reference";
-  std::string gold = "Stratified:30";
+  ReferenceOptions reference;
+  GoldOptions gold;
   double minVisibleFraction = 0.05;
   double maxVisibleFraction = 0.95;
   int maxCandidatesPerLink = 40;

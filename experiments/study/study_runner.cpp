@@ -23,7 +23,7 @@ struct Scorers {
   std::vector<PreparedRule> rules;
   std::vector<int> trials;
   ReferenceEstimator reference;
-  std::optional<ReferenceEstimator> gold;
+  bool gold = false;
 };
 
 struct Candidate {
@@ -45,33 +45,31 @@ void scoreCandidate(const StudyConfig& config, const Scorers& scorers, std::size
       generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
   const auto scene = generated.buildScene();
   const Link link{generated.receiver, generated.source, scene.get()};
-  ReferenceResult reference;
-  scorers.reference.estimate(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
-                             reference);
-  out.rays = reference.integral.raysCast;
+  LinkIntegral draw;
+  const std::uint64_t referenceSeed = deriveSeed(config.seed, {classIndex, index, 1});
+  scorers.reference.draw(link, referenceSeed, accumulator, draw);
+  out.rays = draw.raysCast;
   LinkRecord& record = out.record;
   record.candidate = index;
   record.orientation = generated.orientation;
   record.occluderKind = generated.occluderKind;
-  record.visibleFraction = reference.integral.visibleFraction();
+  record.visibleFraction = draw.visibleFraction();
   if (linkClass == LinkClass::partial) {
     out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
     if (out.mostlyBlocked || record.visibleFraction >= config.maxVisibleFraction) return;
   }
   out.accepted = true;
+  const ReferenceResult reference = scorers.reference.estimate(link, referenceSeed, draw, accumulator);
   const Eigen::MatrixXd& K = reference.integral.coupling;
   const double area = generated.receiver.area;
-  if (reference.standardError.size() > 0) {
-    record.referenceRelativeStandardError = reference.standardError(0, 0) / K(0, 0);
-    record.referenceL1StandardError = l1ErrorBound(reference.standardError, area);
-  } else {
-    record.referenceRelativeStandardError = std::numeric_limits<double>::quiet_NaN();
-  }
-  ReferenceResult gold;
+  record.referenceRelativeStandardError = reference.standardError(0, 0) / K(0, 0);
+  record.referenceL1StandardError = l1ErrorBound(reference.standardError, area);
+  GoldReference gold;
   if (scorers.gold) {
-    scorers.gold->estimate(link, deriveSeed(config.seed, {classIndex, index, 2}), accumulator,
-                           gold);
-    const Eigen::MatrixXd& G = gold.integral.coupling;
+    gold = goldReference(link, config.degree(), deriveSeed(config.seed, {classIndex, index, 2}), config.gold);
+    const Eigen::MatrixXd& G = gold.coupling;
+    record.goldMethod = gold.method;
+    record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
     record.referenceRelativeErrorVsGold = relativeError(K, G);
     record.referenceL1BoundVsGold = l1ErrorBound(K - G, area);
   }
@@ -88,8 +86,8 @@ void scoreCandidate(const StudyConfig& config, const Scorers& scorers, std::size
       relative += share * relativeError(estimate.coupling, K);
       addInto(bound, l1ErrorBound(estimate.coupling - K, area), share);
       if (scorers.gold) {
-        relativeGold += share * relativeError(estimate.coupling, gold.integral.coupling);
-        addInto(boundGold, l1ErrorBound(estimate.coupling - gold.integral.coupling, area), share);
+        relativeGold += share * relativeError(estimate.coupling, gold.coupling);
+        addInto(boundGold, l1ErrorBound(estimate.coupling - gold.coupling, area), share);
       }
     }
     record.relativeError.push_back(relative);
@@ -159,8 +157,7 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
 
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
   const int degree = config.degree();
-  Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), std::nullopt};
-  if (options.gold) scorers.gold.emplace(config.gold, degree);
+  Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), options.gold};
   StudyRun run;
   for (const std::string& name : config.rules) {
     scorers.rules.emplace_back(findRule(name), degree);
@@ -169,13 +166,8 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
     scorers.trials.push_back(trials);
     run.rules.push_back({rule.name(), rule.sampleCount(), rule.isRandom(), trials});
   }
-  run.referenceName = scorers.reference.rule().name();
-  run.referenceSamples = scorers.reference.rule().sampleCount();
-  run.standardErrorMethod = scorers.reference.standardErrorMethod();
-  if (scorers.gold) {
-    run.goldName = scorers.gold->rule().name();
-    run.goldSamples = scorers.gold->rule().sampleCount();
-  }
+  run.referenceName = scorers.reference.name();
+  run.referenceSamples = scorers.reference.samples();
   for (std::size_t c = 0; c < config.classes.size(); ++c) {
     const auto [linkClass, wanted] = config.classes[c];
     // The class index in the seed is the class's fixed number (unoccluded 0, partial 1), so a

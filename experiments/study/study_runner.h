@@ -37,6 +37,8 @@ struct LinkRecord {
   std::vector<double> relativeErrorVsGold;
   std::vector<std::vector<double>> l1BoundVsGold;
   double referenceRelativeErrorVsGold = 0.0;
+  std::string goldMethod;          // "gauss product" or "dense stratified"
+  double goldRelativeError = 0.0;  // the gold's own error estimate of K[0][0] / K[0][0]
   std::vector<double> referenceL1BoundVsGold;
 };
 
@@ -59,8 +61,8 @@ struct RuleInfo {
 
 struct StudyRun {
   std::vector<RuleInfo> rules;
-  std::string referenceName, goldName, standardErrorMethod;
-  std::size_t referenceSamples = 0, goldSamples = 0;
+  std::string referenceName;
+  std::size_t referenceSamples = 0;
   std::vector<ClassRun> classes;
 };
 

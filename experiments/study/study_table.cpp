@@ -2,6 +2,7 @@
 #include <cmath>
 #include <map>
 
+#include "experiments/study/reference_estimate.h"
 #include "experiments/study/study_metrics.h"
 #include "experiments/study/study_runner.h"
 
@@ -17,17 +18,33 @@ std::vector<double> column(const std::vector<LinkRecord>& links, const auto& pic
   return values;
 }
 
-// Mean over links of each source function's bound, and their sum.
+// Mean over links of each source function's bound, and their sum, with the standard error
+// of each mean over links (what the CI baselines scale their margins by).
 nlohmann::json boundTable(const std::vector<LinkRecord>& links, const auto& pickVector) {
-  std::vector<double> means;
+  std::vector<std::vector<double>> perFunction;
+  std::vector<double> totals;
   for (const LinkRecord& link : links) {
     const std::vector<double>& values = pickVector(link);
-    means.resize(values.size(), 0.0);
-    for (std::size_t b = 0; b < values.size(); ++b) means[b] += values[b] / double(links.size());
+    perFunction.resize(values.size());
+    double total = 0.0;
+    for (std::size_t b = 0; b < values.size(); ++b) {
+      perFunction[b].push_back(values[b]);
+      total += values[b];
+    }
+    totals.push_back(total);
+  }
+  std::vector<double> means, sems;
+  for (const auto& values : perFunction) {
+    const SummaryStatistics statistics = summarize(values);
+    means.push_back(statistics.mean);
+    sems.push_back(statistics.sem);
   }
   double total = 0.0;
   for (const double mean : means) total += mean;
-  return {{"per_source_function", means}, {"total", total}};
+  return {{"per_source_function", means},
+          {"total", total},
+          {"per_source_function_sem", sems},
+          {"total_sem", summarize(totals).sem}};
 }
 
 nlohmann::json standardErrorSummary(const std::vector<LinkRecord>& links) {
@@ -131,10 +148,20 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
       {"reference",
        {{"name", run.referenceName},
         {"samples", run.referenceSamples},
-        {"standard_error_method", run.standardErrorMethod},
+        {"replicates", config.reference.replicates},
+        {"standard_error_method",
+         "entrywise sample standard deviation of independent replicates (reference/stratified_reference.h)"},
         {"relative_standard_error", standardErrorSummary(allLinks)}}},
   };
-  if (options.gold) table["gold"] = {{"name", run.goldName}, {"samples", run.goldSamples}};
+  if (options.gold) {
+    std::map<std::string, int> methods;
+    for (const LinkRecord& link : allLinks) ++methods[link.goldMethod];
+    const SummaryStatistics own =
+        summarize(column(allLinks, [](const LinkRecord& l) { return l.goldRelativeError; }));
+    table["gold"] = {{"options", goldOptionsToJson(config.gold)},
+                     {"links_by_method", methods},
+                     {"own_relative_error", {{"mean", own.mean}, {"max", own.max}}}};
+  }
   if (!fig2) {
     // Figure 1: one class (partial), flattened to the top level.
     const nlohmann::json only = classTable(run, run.classes.front(), options.gold, false);
