@@ -10,13 +10,13 @@
 namespace radquad {
 namespace {
 
-int integerIn(const nlohmann::json& object, const char* key, const std::string& where, int low, int high,
-              int fallback) {
+int integerIn(const nlohmann::json& object, const char* key, const std::string& where, int low,
+              int high, int fallback) {
   if (!object.contains(key)) return fallback;
   const auto& value = object[key];
   if (!value.is_number_integer() || value.get<long long>() < low || value.get<long long>() > high) {
-    throw InputError(where + ": " + key + ": expected an integer in [" + std::to_string(low) + ", " +
-                     std::to_string(high) + "]");
+    throw InputError(where + ": " + key + ": expected an integer in [" + std::to_string(low) +
+                     ", " + std::to_string(high) + "]");
   }
   return value.get<int>();
 }
@@ -24,14 +24,16 @@ int integerIn(const nlohmann::json& object, const char* key, const std::string& 
 }  // namespace
 
 ReferenceEstimator::ReferenceEstimator(const ReferenceOptions& options, int degree)
-    : options_(options), degree_(degree), draw_(std::make_shared<StratifiedRule>(options.strataPerAxis), degree) {}
+    : options_(options),
+      degree_(degree),
+      draw_(std::make_shared<StratifiedRule>(options.strataPerAxis), degree) {}
 
 std::string ReferenceEstimator::name() const {
   return options_.strataPerAxis == 10 ? "Reference" : draw_.rule().name();
 }
 
-void ReferenceEstimator::draw(const Link& link, std::uint64_t seed, CouplingAccumulator& accumulator,
-                              LinkIntegral& result) const {
+void ReferenceEstimator::draw(const Link& link, std::uint64_t seed,
+                              CouplingAccumulator& accumulator, LinkIntegral& result) const {
   // Replicate 0 of stratifiedReference uses `seed` itself (derivedSeed(seed, 0) == seed).
   draw_.integrate(link, seed, accumulator, result);
 }
@@ -75,7 +77,8 @@ GoldOptions parseGoldOptions(const nlohmann::json& value, const std::string& whe
     if (options.tolerance <= 0.0) throw InputError(where + ": tolerance must be positive");
   }
   options.denseStrata = integerIn(value, "dense_strata", where, 1, 56, options.denseStrata);
-  options.denseReplicates = integerIn(value, "dense_replicates", where, 2, 100000, options.denseReplicates);
+  options.denseReplicates =
+      integerIn(value, "dense_replicates", where, 2, 100000, options.denseReplicates);
   return options;
 }
 

@@ -59,14 +59,16 @@ void scoreCandidate(const StudyConfig& config, const Scorers& scorers, std::size
     if (out.mostlyBlocked || record.visibleFraction >= config.maxVisibleFraction) return;
   }
   out.accepted = true;
-  const ReferenceResult reference = scorers.reference.estimate(link, referenceSeed, draw, accumulator);
+  const ReferenceResult reference =
+      scorers.reference.estimate(link, referenceSeed, draw, accumulator);
   const Eigen::MatrixXd& K = reference.integral.coupling;
   const double area = generated.receiver.area;
   record.referenceRelativeStandardError = reference.standardError(0, 0) / K(0, 0);
   record.referenceL1StandardError = l1ErrorBound(reference.standardError, area);
   GoldReference gold;
   if (scorers.gold) {
-    gold = goldReference(link, config.degree(), deriveSeed(config.seed, {classIndex, index, 2}), config.gold);
+    gold = goldReference(link, config.degree(), deriveSeed(config.seed, {classIndex, index, 2}),
+                         config.gold);
     const Eigen::MatrixXd& G = gold.coupling;
     record.goldMethod = gold.method;
     record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);

@@ -150,7 +150,8 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
         {"samples", run.referenceSamples},
         {"replicates", config.reference.replicates},
         {"standard_error_method",
-         "entrywise sample standard deviation of independent replicates (reference/stratified_reference.h)"},
+         "entrywise sample standard deviation of independent replicates "
+         "(reference/stratified_reference.h)"},
         {"relative_standard_error", standardErrorSummary(allLinks)}}},
   };
   if (options.gold) {
