@@ -54,7 +54,12 @@ void runStudyToFile(const std::filesystem::path& configPath, const std::filesyst
                     const StudyOptions& options) {
   const StudyConfig config = readStudyConfig(configPath);
   nlohmann::json table = runStudyTable(config, options);
-  table["options"]["config_path"] = configPath.string();
+  // Relative to the source tree when inside it, so committed tables name no machine's paths.
+  const auto absolute = std::filesystem::weakly_canonical(configPath);
+  const auto relative =
+      absolute.lexically_relative(std::filesystem::weakly_canonical(sourceRoot()));
+  const bool inside = !relative.empty() && *relative.begin() != "..";
+  table["options"]["config_path"] = inside ? relative.string() : configPath.string();
   writeFileAtomically(outPath, table.dump(2) + "\n");
   if (options.progress) {
     std::cerr << "radquad study: wrote " << outPath.string() << " in "
