@@ -55,11 +55,11 @@ def figure1(table, plots):
     names = [rule["name"] for rule in rules]
     means = np.array([rule["relative_error"]["mean"] for rule in rules])
     sems = np.array([rule["relative_error"]["sem"] for rule in rules])
-    figure, axes = plt.subplots(figsize=(7.5, 4.2))
+    figure, axes = plt.subplots(figsize=(9.0, 4.4))
     positions = np.arange(len(rules))
     axes.bar(positions, means, color="#4c72b0", yerr=sems, capsize=4, ecolor="black")
     axes.set_yscale("log")
-    axes.set_xticks(positions, [f"{n}\n({r['samples']})" for n, r in zip(names, rules)], fontsize=8)
+    axes.set_xticks(positions, [f"{n}\n({r['samples']} samples)" for n, r in zip(names, rules)], fontsize=7)
     axes.set_ylabel("mean relative error of K[0][0]")
     axes.set_title(f"Figure 1: constant bases, {table['links']} partially visible links", fontsize=10)
     axes.text(0.0, -0.22, reference_note(table), transform=axes.transAxes, fontsize=7)
@@ -83,7 +83,7 @@ def figure2(table, plots):
         bottom = np.zeros(len(names))
         for b in range(functions):
             heights = np.array([rules[n]["l1_error_bound"]["per_source_function"][b] for n in names])
-            label = f"source M({b // side},{b % side})" if offset == 0 else None
+            label = f"M({b // side},{b % side})" if offset == 0 else None
             axes.bar(positions, heights, width, bottom=bottom, color=colours[b], label=label,
                      edgecolor="white", linewidth=0.3, hatch=None if class_name == "unoccluded" else "//")
             bottom += heights
@@ -92,8 +92,11 @@ def figure2(table, plots):
     counts = ", ".join(f"{c} ({classes[c]['links']} links)" for c in order)
     axes.set_title(f"Figure 2: quadratic bases; left bars {order[0]}, right (hatched) {order[-1]}; {counts}",
                    fontsize=9)
-    axes.legend(fontsize=7, ncol=3, loc="upper left")
-    axes.text(0.0, -0.14, reference_note(table), transform=axes.transAxes, fontsize=7)
+    axes.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="source function", title_fontsize=7)
+    floor = ", ".join(f"{c} {classes[c]['reference']['l1_standard_error']['total']:.2g}" for c in order
+                      if "l1_standard_error" in classes[c]["reference"])
+    note = reference_note(table) + (f"; its own L1 standard error (total): {floor}" if floor else "")
+    axes.text(0.0, -0.14, note, transform=axes.transAxes, fontsize=7)
     axes.grid(axis="y", alpha=0.3)
     save(figure, plots, "fig2")
     plt.close(figure)
