@@ -14,7 +14,7 @@ namespace radquad {
 std::filesystem::path sourceRoot();
 
 // `git rev-parse HEAD` of the source tree, with "-modified" appended when tracked files
-// differ from it; "unknown" outside a repository.
+// outside results/ and plots/ differ from it; "unknown" outside a repository.
 std::string gitCommit();
 
 nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options);
