@@ -35,8 +35,9 @@ std::string gitCommit() {
   const std::string git = "git -C '" + sourceRoot().string() + "' ";
   const std::string head = commandOutput(git + "rev-parse HEAD 2>/dev/null");
   if (head.size() != 40) return "unknown";
-  const std::string changes =
-      commandOutput(git + "status --porcelain --untracked-files=no 2>/dev/null");
+  // The tables and figures a run writes do not count as changes to the code that made them.
+  const std::string changes = commandOutput(
+      git + "status --porcelain --untracked-files=no -- . ':!results' ':!plots' 2>/dev/null");
   return changes.empty() ? head : head + "-modified";
 }
 
