@@ -1,6 +1,7 @@
 #include "experiments/study/study_metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "kernel/legendre_basis.h"
@@ -14,8 +15,13 @@ double relativeError(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& ref
 std::vector<double> l1ErrorBound(const Eigen::MatrixXd& difference, double receiverArea) {
   const int functions = int(difference.rows());
   const int side = int(std::lround(std::sqrt(double(functions))));
-  std::vector<double> absoluteIntegral(std::size_t(side), 0.0);
-  for (int k = 0; k < side; ++k) absoluteIntegral[std::size_t(k)] = legendreAbsoluteIntegral(k);
+  // c_k computed once: legendreAbsoluteIntegral integrates numerically, and the study asks
+  // for it for every link, rule and trial.
+  static const std::array<double, kMaxBasisDegree + 1> absoluteIntegral = [] {
+    std::array<double, kMaxBasisDegree + 1> values{};
+    for (int k = 0; k <= kMaxBasisDegree; ++k) values[std::size_t(k)] = legendreAbsoluteIntegral(k);
+    return values;
+  }();
   // (1/A_r) sqrt(A_r) = 1/sqrt(A_r).
   const double perUnitArea = 1.0 / std::sqrt(receiverArea);
   std::vector<double> bound(std::size_t(functions), 0.0);
