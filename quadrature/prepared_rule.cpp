@@ -28,8 +28,8 @@ void PreparedRule::integrateSamples(const Link& link, const RuleSamples& samples
   }
 }
 
-void PreparedRule::integrate(const Link& link, std::uint64_t seed,
-                             CouplingAccumulator& accumulator, LinkIntegral& result) const {
+void PreparedRule::integrate(const Link& link, std::uint64_t seed, CouplingAccumulator& accumulator,
+                             LinkIntegral& result) const {
   if (!rule_->isRandom()) {
     integrateSamples(link, fixedSamples_, &receiverBasis_, &sourceBasis_, accumulator, result);
     return;

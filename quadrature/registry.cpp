@@ -26,9 +26,18 @@ struct ParametrisedFamily {
 // The catalogue of DESIGN.md, "The paper's rules".
 const std::vector<NamedRule>& namedCatalogue() {
   static const std::vector<NamedRule> catalogue = {
-      {"FullGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 3, 3}, "FullGauss"); }},
-      {"LinSrcGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 2, 2}, "LinSrcGauss"); }},
-      {"ConstSrcGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 1, 1}, "ConstSrcGauss"); }},
+      {"FullGauss",
+       [] {
+         return std::make_shared<GaussProductRule>(std::array{3, 3, 3, 3}, "FullGauss");
+       }},
+      {"LinSrcGauss",
+       [] {
+         return std::make_shared<GaussProductRule>(std::array{3, 3, 2, 2}, "LinSrcGauss");
+       }},
+      {"ConstSrcGauss",
+       [] {
+         return std::make_shared<GaussProductRule>(std::array{3, 3, 1, 1}, "ConstSrcGauss");
+       }},
       {"Stroud65", [] { return StroudRule::cn57(); }},
       {"HierStroud", [] { return StroudRule::hierarchicalCn31(); }},
       {"MonteCarlo", [] { return std::make_shared<MonteCarloRule>(81, "MonteCarlo"); }},
@@ -51,7 +60,8 @@ const std::vector<ParametrisedFamily>& parametrisedCatalogue() {
 
 std::string validNames() {
   std::string text;
-  for (const auto& rule : namedCatalogue()) text += std::string(text.empty() ? "" : ", ") + rule.name;
+  for (const auto& rule : namedCatalogue())
+    text += std::string(text.empty() ? "" : ", ") + rule.name;
   for (const auto& family : parametrisedCatalogue()) text += std::string(", ") + family.form;
   return text;
 }

@@ -49,14 +49,14 @@ nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
   const double denominator = count > 1 ? count - 1.0 : 1.0;
   const Eigen::MatrixXd deviation =
       ((squares - count * mean.cwiseAbs2()) / denominator).cwiseMax(0.0).cwiseSqrt();
-  const double formFactorDeviation = std::sqrt(std::max(
-      0.0, (formFactorSquares - count * formFactorMean * formFactorMean) / denominator));
+  const double formFactorDeviation = std::sqrt(
+      std::max(0.0, (formFactorSquares - count * formFactorMean * formFactorMean) / denominator));
   return {{"trials", options.trials},
           {"seeds", {options.seed, options.seed + std::uint64_t(options.trials) - 1}},
           {"mean_form_factor", formFactorMean},
           {"mean_coupling", matrixToJson(mean)},
-          {"standard_deviation", {{"form_factor", formFactorDeviation},
-                                  {"coupling", matrixToJson(deviation)}}}};
+          {"standard_deviation",
+           {{"form_factor", formFactorDeviation}, {"coupling", matrixToJson(deviation)}}}};
 }
 
 void runLink(const LinkOptions& options) {
@@ -98,16 +98,20 @@ void addLinkCommand(CLI::App& app) {
   auto options = std::make_shared<LinkOptions>();
   CLI::App* command = app.add_subcommand(
       "link", "Integrate the coupling of one link with one rule; prints JSON on stdout");
-  command->add_option("link", options->linkPath,
-                      "LINK.json: {\"receiver\": PATCH, \"source\": PATCH, \"occluders\": [PATCH...]}")
+  command
+      ->add_option("link", options->linkPath,
+                   "LINK.json: {\"receiver\": PATCH, \"source\": PATCH, \"occluders\": [PATCH...]}")
       ->required();
   command->add_option("--rule", options->ruleName, "Rule name (see `radquad rules`)")->required();
-  command->add_option("--degree", options->degree, "Basis degree d, 0..8 ((d+1)^2 functions per patch)")
+  command
+      ->add_option("--degree", options->degree,
+                   "Basis degree d, 0..8 ((d+1)^2 functions per patch)")
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of random rules")->capture_default_str();
-  command->add_option("--trials", options->trials,
-                      "Random rules: run T trials with seeds S..S+T-1 and report mean and "
-                      "standard deviation")
+  command
+      ->add_option("--trials", options->trials,
+                   "Random rules: run T trials with seeds S..S+T-1 and report mean and "
+                   "standard deviation")
       ->capture_default_str();
   command->callback([options] { runLink(*options); });
 }

@@ -89,8 +89,7 @@ TEST_P(CatalogueExactness, ExactToExactlyTheDeclaredDegree) {
       << ": its declared degree is too low";
 }
 
-INSTANTIATE_TEST_SUITE_P(Registry, CatalogueExactness,
-                         testing::ValuesIn(deterministicRuleNames()),
+INSTANTIATE_TEST_SUITE_P(Registry, CatalogueExactness, testing::ValuesIn(deterministicRuleNames()),
                          [](const testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            for (char& c : name) {

@@ -43,7 +43,8 @@ TEST(NRook, EveryStratumOfEveryAxisHoldsExactlyOnePoint) {
 }
 
 TEST(Stratified, EveryCellHoldsExactlyOnePoint) {
-  for (const auto& [name, k] : {std::pair{"Stratified", 3}, {"Reference", 10}, {"Stratified:5", 5}}) {
+  for (const auto& [name, k] :
+       {std::pair{"Stratified", 3}, {"Reference", 10}, {"Stratified:5", 5}}) {
     const auto rule = findRule(name);
     ASSERT_EQ(rule->sampleCount(), std::size_t(k * k * k * k));
     for (std::uint64_t seed : {0ull, 42ull}) {
@@ -130,8 +131,8 @@ TEST(RandomRules, MeanOverSeedsAgreesWithGold) {
 }
 
 TEST(RandomRules, ParametrisedFormsRejectBadParameters) {
-  for (const char* bad : {"NRook:0", "NRook:x", "MonteCarlo:-3", "Stratified:57", "Stratified:",
-                          "MonteCarlo:12abc"}) {
+  for (const char* bad : {"NRook:0", "NRook:x", "MonteCarlo:-3", "Stratified:57",
+                          "Stratified:", "MonteCarlo:12abc"}) {
     EXPECT_ANY_THROW(findRule(bad)) << bad;
   }
   EXPECT_EQ(findRule("Stratified:4")->sampleCount(), 256u);

@@ -13,8 +13,12 @@
 namespace radquad {
 namespace {
 
-Patch unitReceiver() { return Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver"); }
-Patch facingSource() { return Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source"); }
+Patch unitReceiver() {
+  return Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+}
+Patch facingSource() {
+  return Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+}
 
 // A blocker half way between the parallel squares, covering about half of the rays.
 struct OccludedLink {
@@ -37,7 +41,8 @@ void expectCalibrated(const Link& link, int degree) {
   Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(functions, functions), squares = sum,
                   reportedVariance = sum;
   for (int seed = 0; seed < kSeeds; ++seed) {
-    const ReferenceEstimate estimate = stratifiedReference(link, degree, std::uint64_t(seed) * 7919);
+    const ReferenceEstimate estimate =
+        stratifiedReference(link, degree, std::uint64_t(seed) * 7919);
     ASSERT_EQ(estimate.integral.kernelEvaluations, 10000u);
     sum += estimate.integral.coupling;
     squares += estimate.integral.coupling.cwiseAbs2();

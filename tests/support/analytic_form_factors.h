@@ -22,9 +22,9 @@ inline double parallelRectangles(double a, double b, double c) {
 inline double perpendicularRectangles(double w, double h, double l) {
   const double W = w / l, H = h / l;
   const double W2 = W * W, H2 = H * H, S = W2 + H2;
-  const double logTerm =
-      std::log((1 + W2) * (1 + H2) / (1 + S)) +
-      W2 * std::log(W2 * (1 + S) / ((1 + W2) * S)) + H2 * std::log(H2 * (1 + S) / ((1 + H2) * S));
+  const double logTerm = std::log((1 + W2) * (1 + H2) / (1 + S)) +
+                         W2 * std::log(W2 * (1 + S) / ((1 + W2) * S)) +
+                         H2 * std::log(H2 * (1 + S) / ((1 + H2) * S));
   return (W * std::atan(1 / W) + H * std::atan(1 / H) - std::sqrt(S) * std::atan(1 / std::sqrt(S)) +
           0.25 * logTerm) /
          (std::numbers::pi * W);
