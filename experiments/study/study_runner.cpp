@@ -30,6 +30,7 @@ struct Candidate {
   bool accepted = false;
   bool mostlyBlocked = false;
   std::uint64_t rays = 0;
+  LinkIntegral draw;  // the reference's reported draw, kept for the scoring pass
   LinkRecord record;
 };
 
@@ -38,29 +39,43 @@ void addInto(std::vector<double>& sum, const std::vector<double>& values, double
   for (std::size_t k = 0; k < values.size(); ++k) sum[k] += scale * values[k];
 }
 
-void scoreCandidate(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
-                    LinkClass linkClass, std::uint64_t index, CouplingAccumulator& accumulator,
-                    Candidate& out) {
+// First pass over a candidate: its geometry and the reference's reported draw, whose rays
+// decide whether a partial candidate qualifies (one draw; the replicates wait for the links
+// that are kept).
+void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
+                       LinkClass linkClass, std::uint64_t index, CouplingAccumulator& accumulator,
+                       Candidate& out) {
   const GeneratedLink generated =
       generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
   const auto scene = generated.buildScene();
   const Link link{generated.receiver, generated.source, scene.get()};
-  LinkIntegral draw;
-  const std::uint64_t referenceSeed = deriveSeed(config.seed, {classIndex, index, 1});
-  scorers.reference.draw(link, referenceSeed, accumulator, draw);
-  out.rays = draw.raysCast;
+  scorers.reference.draw(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
+                         out.draw);
+  out.rays = out.draw.raysCast;
   LinkRecord& record = out.record;
   record.candidate = index;
   record.orientation = generated.orientation;
   record.occluderKind = generated.occluderKind;
-  record.visibleFraction = draw.visibleFraction();
+  record.visibleFraction = out.draw.visibleFraction();
+  out.accepted = true;
   if (linkClass == LinkClass::partial) {
     out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
-    if (out.mostlyBlocked || record.visibleFraction >= config.maxVisibleFraction) return;
+    out.accepted = !out.mostlyBlocked && record.visibleFraction < config.maxVisibleFraction;
   }
-  out.accepted = true;
+}
+
+// Second pass over a kept link: the reference's standard error, the gold, and every rule.
+void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
+               LinkClass linkClass, CouplingAccumulator& accumulator, Candidate& candidate) {
+  const std::uint64_t index = candidate.record.candidate;
+  const GeneratedLink generated =
+      generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
+  const auto scene = generated.buildScene();
+  const Link link{generated.receiver, generated.source, scene.get()};
+  const std::uint64_t referenceSeed = deriveSeed(config.seed, {classIndex, index, 1});
+  LinkRecord& record = candidate.record;
   const ReferenceResult reference =
-      scorers.reference.estimate(link, referenceSeed, draw, accumulator);
+      scorers.reference.estimate(link, referenceSeed, candidate.draw, accumulator);
   const Eigen::MatrixXd& K = reference.integral.coupling;
   const double area = generated.receiver.area;
   record.referenceRelativeStandardError = reference.standardError(0, 0) / K(0, 0);
@@ -117,11 +132,11 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                        " candidates (max_candidates_per_link = " +
                        std::to_string(config.maxCandidatesPerLink) + ")");
     }
-    // Size the batch from the acceptance rate so far; the batch size only affects wasted
-    // work, never which links are kept.
+    // Size the batch from the acceptance rate so far; the batch size only affects how many
+    // candidates are classified in vain, never which links are kept.
     const std::size_t missing = std::size_t(wanted) - run.links.size();
     const double rate =
-        run.generated == 0 ? 0.5 : std::max(0.02, double(run.links.size()) / double(run.generated));
+        run.generated == 0 ? 0.8 : std::max(0.02, double(run.links.size()) / double(run.generated));
     const std::uint64_t batch = std::min<std::uint64_t>(
         limit - run.generated,
         std::max<std::uint64_t>(16, std::uint64_t(1.2 * missing / rate) + 4));
@@ -131,22 +146,33 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                       [&](const tbb::blocked_range<std::uint64_t>& range) {
                         CouplingAccumulator& accumulator = accumulators.local();
                         for (std::uint64_t k = range.begin(); k < range.end(); ++k) {
-                          scoreCandidate(config, scorers, classIndex, linkClass, first + k,
-                                         accumulator, candidates[k]);
+                          classifyCandidate(config, scorers, classIndex, linkClass, first + k,
+                                            accumulator, candidates[k]);
                         }
                       });
-    for (Candidate& candidate : candidates) {
-      if (run.links.size() == std::size_t(wanted)) break;
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (run.links.size() + kept.size() == std::size_t(wanted)) break;
+      const Candidate& candidate = candidates[k];
       ++run.generated;
       run.referenceRays += candidate.rays;
       if (candidate.accepted) {
-        run.links.push_back(std::move(candidate.record));
+        kept.push_back(k);
       } else if (candidate.mostlyBlocked) {
         ++run.rejectedMostlyBlocked;
       } else {
         ++run.rejectedMostlyVisible;
       }
     }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        CouplingAccumulator& accumulator = accumulators.local();
+                        for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                          scoreLink(config, scorers, classIndex, linkClass, accumulator,
+                                    candidates[kept[k]]);
+                        }
+                      });
+    for (const std::size_t k : kept) run.links.push_back(std::move(candidates[k].record));
     if (options.progress) {
       std::cerr << "radquad study: " << linkClassName(linkClass) << " links " << run.links.size()
                 << "/" << wanted << " (" << run.generated << " candidates)\n";
