@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   radquad::addLinkCommand(app);
   radquad::addReferenceCommand(app);
   radquad::addRulesCommand(app);
+  radquad::addStudyCommand(app);
+  radquad::addFiguresCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

@@ -9,5 +9,7 @@ namespace radquad {
 void addLinkCommand(CLI::App& app);
 void addReferenceCommand(CLI::App& app);
 void addRulesCommand(CLI::App& app);
+void addStudyCommand(CLI::App& app);
+void addFiguresCommand(CLI::App& app);
 
 }  // namespace radquad

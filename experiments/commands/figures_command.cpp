@@ -1,0 +1,75 @@
+// `radquad figures [--quick] [--gold]`: regenerates Figures 1 and 2: runs the study configs
+// experiments/configs/fig1.json and fig2.json (fig1-quick.json, fig2-quick.json with
+// --quick) into results/fig1.json, results/fig2.json, then draws plots/fig1.{png,svg} and
+// plots/fig2.{png,svg} with plots/figures.py. Quick runs go to results/quick/ and
+// plots/quick/ so they never overwrite the canonical tables.
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "experiments/commands/commands.h"
+#include "experiments/study/study_output.h"
+#include "kernel/input_error.h"
+
+namespace radquad {
+namespace {
+
+struct FiguresOptions {
+  bool quick = false;
+  bool gold = false;
+  bool quiet = false;
+  std::string resultsDir;
+  std::string plotsDir;
+  std::string python = "/usr/bin/python3";
+};
+
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+void runFigures(const FiguresOptions& options) {
+  const std::filesystem::path root = sourceRoot();
+  const std::string suffix = options.quick ? "-quick" : "";
+  const std::filesystem::path results = !options.resultsDir.empty()
+                                            ? std::filesystem::path(options.resultsDir)
+                                            : root / (options.quick ? "results/quick" : "results");
+  const std::filesystem::path plots = !options.plotsDir.empty()
+                                          ? std::filesystem::path(options.plotsDir)
+                                          : root / (options.quick ? "plots/quick" : "plots");
+  std::filesystem::create_directories(results);
+  std::filesystem::create_directories(plots);
+  const StudyOptions study{options.gold, !options.quiet};
+  for (const char* figure : {"fig1", "fig2"}) {
+    runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
+                   results / (std::string(figure) + ".json"), study);
+  }
+  const std::string command = quoted(options.python) + " " +
+                              quoted((root / "plots/figures.py").string()) + " --results " +
+                              quoted(results.string()) + " --plots " + quoted(plots.string());
+  if (!options.quiet) std::cerr << "radquad figures: " << command << "\n";
+  if (std::system(command.c_str()) != 0) {
+    throw InputError("plots/figures.py failed (is matplotlib installed for " + options.python +
+                     "?)");
+  }
+}
+
+}  // namespace
+
+void addFiguresCommand(CLI::App& app) {
+  auto options = std::make_shared<FiguresOptions>();
+  CLI::App* command = app.add_subcommand(
+      "figures", "Regenerate Figures 1 and 2: results/fig{1,2}.json and plots/fig{1,2}.{png,svg}");
+  command->add_flag("--quick", options->quick,
+                    "The small CI suites, into results/quick/ and plots/quick/");
+  command->add_flag("--gold", options->gold, "Also score against the gold reference (slow)");
+  command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
+  command->add_option("--results", options->resultsDir, "Directory of the JSON tables");
+  command->add_option("--plots", options->plotsDir, "Directory of the figures");
+  command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();
+  command->callback([options] { runFigures(*options); });
+}
+
+}  // namespace radquad

@@ -1,0 +1,82 @@
+// Scenario generation for the study (DESIGN.md, "The study"): pairs of patches drawn
+// deterministically from a seed over ranges of element size, distance, relative
+// orientation and occluder complexity. Each candidate link is a pure function of
+// (ranges, class, seed); whether a partial candidate qualifies (visible fraction in
+// (0.05, 0.95) by the reference's rays) is decided by the study runner.
+//
+// Geometry (lengths in the units of the patches; L = the largest side of the two patches):
+// - receiver: an a x b rectangle centred at the origin in the plane z = 0, normal +z;
+// - sizes: with probability `mixed_fraction` the four sides are independent, log-uniform in
+//   [min_side, max_side]; otherwise both patches are the same square of such a side;
+// - distance D = L times a factor log-uniform in [min_distance_factor, max_distance_factor];
+// - "parallel": the source faces the receiver at height D, offset laterally by up to L/4,
+//   spun about its normal; "perpendicular": the source stands in a plane x = const beyond
+//   the receiver's edge, facing it, its centre D from that edge at an elevation of 20 to 70
+//   degrees (lifted if needed so it never touches the receiver's plane); "tilted": the
+//   parallel layout with each patch rotated about a random in-plane axis by up to
+//   `max_tilt_degrees` (redrawn until each patch lies wholly in front of the other).
+// - occluders (partial class only), placed in the beam between the patch centres:
+//   "one_blocker" one parallelogram of side 0.3L..L; "several_blockers" 2..6 smaller ones;
+//   "slats" a grille of 5..15 thin parallel strips (sometimes crossed by a second set);
+//   "soup" `soup_triangles` small random triangles (sides up to about 0.1L) in a box.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "kernel/occluder_scene.h"
+#include "kernel/patch.h"
+
+namespace radquad {
+
+enum class LinkClass { unoccluded, partial };
+enum class Orientation { parallel, perpendicular, tilted };
+enum class OccluderKind { none, oneBlocker, severalBlockers, slats, soup };
+
+const char* linkClassName(LinkClass linkClass);
+const char* orientationName(Orientation orientation);
+const char* occluderKindName(OccluderKind kind);
+
+struct GeometryRanges {
+  double minSide = 0.1;
+  double maxSide = 1.0;
+  double mixedFraction = 0.5;
+  double minDistanceFactor = 0.25;
+  double maxDistanceFactor = 4.0;
+  std::vector<Orientation> orientations = {Orientation::parallel, Orientation::perpendicular,
+                                           Orientation::tilted};
+  double maxTiltDegrees = 75.0;
+  std::vector<OccluderKind> occluders = {OccluderKind::oneBlocker, OccluderKind::severalBlockers,
+                                         OccluderKind::slats, OccluderKind::soup};
+  int soupTriangles = 1000;
+};
+
+// Parses the "geometry" object of a study config (every key optional; unknown keys are an
+// error). `where` names it in messages.
+GeometryRanges parseGeometryRanges(const nlohmann::json& value, const std::string& where);
+nlohmann::json geometryRangesToJson(const GeometryRanges& ranges);
+
+struct GeneratedLink {
+  Patch receiver;
+  Patch source;
+  Orientation orientation = Orientation::parallel;
+  OccluderKind occluderKind = OccluderKind::none;
+  double distanceFactor = 0.0;  // D / L
+  std::vector<Patch> blockers;  // parallelograms (blockers and slats)
+  std::vector<Eigen::Vector3d> soupVertices;
+  std::vector<std::array<std::uint32_t, 3>> soupTriangles;
+
+  bool hasOccluders() const { return !blockers.empty() || !soupTriangles.empty(); }
+  // The committed occluder scene; null when there is nothing in the way.
+  std::unique_ptr<OccluderScene> buildScene() const;
+};
+
+// The candidate link of `linkClass` drawn from `seed`. Unoccluded links have no occluders.
+GeneratedLink generateLink(const GeometryRanges& ranges, LinkClass linkClass, std::uint64_t seed);
+
+}  // namespace radquad

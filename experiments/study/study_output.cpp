@@ -1,0 +1,71 @@
+#include "experiments/study/study_output.h"
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "experiments/atomic_file.h"
+
+#ifndef RADQUAD_SOURCE_DIR
+#define RADQUAD_SOURCE_DIR "."
+#endif
+
+namespace radquad {
+namespace {
+
+std::string commandOutput(const std::string& command) {
+  std::string text;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return text;
+  std::array<char, 256> buffer;
+  while (fgets(buffer.data(), int(buffer.size()), pipe) != nullptr) text += buffer.data();
+  pclose(pipe);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+}  // namespace
+
+std::filesystem::path sourceRoot() {
+  return RADQUAD_SOURCE_DIR;
+}
+
+std::string gitCommit() {
+  const std::string git = "git -C '" + sourceRoot().string() + "' ";
+  const std::string head = commandOutput(git + "rev-parse HEAD 2>/dev/null");
+  if (head.size() != 40) return "unknown";
+  // The tables and figures a run writes do not count as changes to the code that made them.
+  const std::string changes = commandOutput(
+      git + "status --porcelain --untracked-files=no -- . ':!results' ':!plots' 2>/dev/null");
+  return changes.empty() ? head : head + "-modified";
+}
+
+nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const StudyRun run = runStudy(config, options);
+  nlohmann::json table = studyTable(config, options, run);
+  table["git_commit"] = gitCommit();
+  table["elapsed_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return table;
+}
+
+void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
+                    const StudyOptions& options) {
+  const StudyConfig config = readStudyConfig(configPath);
+  nlohmann::json table = runStudyTable(config, options);
+  // Relative to the source tree when inside it, so committed tables name no machine's paths.
+  const auto absolute = std::filesystem::weakly_canonical(configPath);
+  const auto relative =
+      absolute.lexically_relative(std::filesystem::weakly_canonical(sourceRoot()));
+  const bool inside = !relative.empty() && *relative.begin() != "..";
+  table["options"]["config_path"] = inside ? relative.string() : configPath.string();
+  writeFileAtomically(outPath, table.dump(2) + "\n");
+  if (options.progress) {
+    std::cerr << "radquad study: wrote " << outPath.string() << " in "
+              << table["elapsed_seconds"].get<double>() << " s\n";
+  }
+}
+
+}  // namespace radquad

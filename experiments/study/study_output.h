@@ -1,0 +1,26 @@
+// Running a study config to a finished, stamped table: the JSON of studyTable plus
+// `git_commit` and `elapsed_seconds`, written atomically.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "experiments/study/study_runner.h"
+
+namespace radquad {
+
+// The source tree the binary was built from (configs, plots/ scripts, results/).
+std::filesystem::path sourceRoot();
+
+// `git rev-parse HEAD` of the source tree, with "-modified" appended when tracked files
+// outside results/ and plots/ differ from it; "unknown" outside a repository.
+std::string gitCommit();
+
+nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options);
+
+// Runs the config at `configPath` and writes the table to `outPath` (atomically).
+void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
+                    const StudyOptions& options);
+
+}  // namespace radquad

@@ -1,0 +1,209 @@
+#include "experiments/study/study_runner.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <optional>
+
+#include "experiments/scenarios/random_stream.h"
+#include "experiments/study/reference_estimate.h"
+#include "experiments/study/study_metrics.h"
+#include "kernel/input_error.h"
+#include "quadrature/prepared_rule.h"
+#include "quadrature/registry.h"
+
+namespace radquad {
+namespace {
+
+struct Scorers {
+  std::vector<PreparedRule> rules;
+  std::vector<int> trials;
+  ReferenceEstimator reference;
+  bool gold = false;
+};
+
+struct Candidate {
+  bool accepted = false;
+  bool mostlyBlocked = false;
+  std::uint64_t rays = 0;
+  LinkIntegral draw;  // the reference's reported draw, kept for the scoring pass
+  LinkRecord record;
+};
+
+void addInto(std::vector<double>& sum, const std::vector<double>& values, double scale) {
+  sum.resize(values.size(), 0.0);
+  for (std::size_t k = 0; k < values.size(); ++k) sum[k] += scale * values[k];
+}
+
+// First pass over a candidate: its geometry and the reference's reported draw, whose rays
+// decide whether a partial candidate qualifies (one draw; the replicates wait for the links
+// that are kept).
+void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
+                       LinkClass linkClass, std::uint64_t index, CouplingAccumulator& accumulator,
+                       Candidate& out) {
+  const GeneratedLink generated =
+      generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
+  const auto scene = generated.buildScene();
+  const Link link{generated.receiver, generated.source, scene.get()};
+  scorers.reference.draw(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
+                         out.draw);
+  out.rays = out.draw.raysCast;
+  LinkRecord& record = out.record;
+  record.candidate = index;
+  record.orientation = generated.orientation;
+  record.occluderKind = generated.occluderKind;
+  record.visibleFraction = out.draw.visibleFraction();
+  out.accepted = true;
+  if (linkClass == LinkClass::partial) {
+    out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
+    out.accepted = !out.mostlyBlocked && record.visibleFraction < config.maxVisibleFraction;
+  }
+}
+
+// Second pass over a kept link: the reference's standard error, the gold, and every rule.
+void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
+               LinkClass linkClass, CouplingAccumulator& accumulator, Candidate& candidate) {
+  const std::uint64_t index = candidate.record.candidate;
+  const GeneratedLink generated =
+      generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
+  const auto scene = generated.buildScene();
+  const Link link{generated.receiver, generated.source, scene.get()};
+  const std::uint64_t referenceSeed = deriveSeed(config.seed, {classIndex, index, 1});
+  LinkRecord& record = candidate.record;
+  const ReferenceResult reference =
+      scorers.reference.estimate(link, referenceSeed, candidate.draw, accumulator);
+  const Eigen::MatrixXd& K = reference.integral.coupling;
+  const double area = generated.receiver.area;
+  record.referenceRelativeStandardError = reference.standardError(0, 0) / K(0, 0);
+  record.referenceL1StandardError = l1ErrorBound(reference.standardError, area);
+  GoldReference gold;
+  if (scorers.gold) {
+    gold = goldReference(link, config.degree(), deriveSeed(config.seed, {classIndex, index, 2}),
+                         config.gold);
+    const Eigen::MatrixXd& G = gold.coupling;
+    record.goldMethod = gold.method;
+    record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
+    record.referenceRelativeErrorVsGold = relativeError(K, G);
+    record.referenceL1BoundVsGold = l1ErrorBound(K - G, area);
+  }
+  LinkIntegral estimate;
+  for (std::size_t r = 0; r < scorers.rules.size(); ++r) {
+    const int trials = scorers.trials[r];
+    const double share = 1.0 / trials;
+    double relative = 0.0, relativeGold = 0.0;
+    std::vector<double> bound, boundGold;
+    for (int t = 0; t < trials; ++t) {
+      scorers.rules[r].integrate(link,
+                                 deriveSeed(config.seed, {classIndex, index, 3, std::uint64_t(t)}),
+                                 accumulator, estimate);
+      relative += share * relativeError(estimate.coupling, K);
+      addInto(bound, l1ErrorBound(estimate.coupling - K, area), share);
+      if (scorers.gold) {
+        relativeGold += share * relativeError(estimate.coupling, gold.coupling);
+        addInto(boundGold, l1ErrorBound(estimate.coupling - gold.coupling, area), share);
+      }
+    }
+    record.relativeError.push_back(relative);
+    record.l1Bound.push_back(std::move(bound));
+    if (scorers.gold) {
+      record.relativeErrorVsGold.push_back(relativeGold);
+      record.l1BoundVsGold.push_back(std::move(boundGold));
+    }
+  }
+}
+
+ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const Scorers& scorers,
+                  std::size_t classIndex, LinkClass linkClass, int wanted) {
+  ClassRun run;
+  run.linkClass = linkClass;
+  run.wanted = wanted;
+  const std::uint64_t limit = std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
+  tbb::enumerable_thread_specific<CouplingAccumulator> accumulators;
+  std::vector<Candidate> candidates;
+  while (run.links.size() < std::size_t(wanted)) {
+    if (run.generated >= limit) {
+      throw InputError(std::string("class '") + linkClassName(linkClass) + "': only " +
+                       std::to_string(run.links.size()) + " of " + std::to_string(wanted) +
+                       " links qualified in " + std::to_string(run.generated) +
+                       " candidates (max_candidates_per_link = " +
+                       std::to_string(config.maxCandidatesPerLink) + ")");
+    }
+    // Size the batch from the acceptance rate so far; the batch size only affects how many
+    // candidates are classified in vain, never which links are kept.
+    const std::size_t missing = std::size_t(wanted) - run.links.size();
+    const double rate =
+        run.generated == 0 ? 0.8 : std::max(0.02, double(run.links.size()) / double(run.generated));
+    const std::uint64_t batch = std::min<std::uint64_t>(
+        limit - run.generated,
+        std::max<std::uint64_t>(16, std::uint64_t(1.2 * missing / rate) + 4));
+    candidates.assign(batch, Candidate{});
+    const std::uint64_t first = run.generated;
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, batch, 1),
+                      [&](const tbb::blocked_range<std::uint64_t>& range) {
+                        CouplingAccumulator& accumulator = accumulators.local();
+                        for (std::uint64_t k = range.begin(); k < range.end(); ++k) {
+                          classifyCandidate(config, scorers, classIndex, linkClass, first + k,
+                                            accumulator, candidates[k]);
+                        }
+                      });
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (run.links.size() + kept.size() == std::size_t(wanted)) break;
+      const Candidate& candidate = candidates[k];
+      ++run.generated;
+      run.referenceRays += candidate.rays;
+      if (candidate.accepted) {
+        kept.push_back(k);
+      } else if (candidate.mostlyBlocked) {
+        ++run.rejectedMostlyBlocked;
+      } else {
+        ++run.rejectedMostlyVisible;
+      }
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        CouplingAccumulator& accumulator = accumulators.local();
+                        for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                          scoreLink(config, scorers, classIndex, linkClass, accumulator,
+                                    candidates[kept[k]]);
+                        }
+                      });
+    for (const std::size_t k : kept) run.links.push_back(std::move(candidates[k].record));
+    if (options.progress) {
+      std::cerr << "radquad study: " << linkClassName(linkClass) << " links " << run.links.size()
+                << "/" << wanted << " (" << run.generated << " candidates)\n";
+    }
+  }
+  return run;
+}
+
+}  // namespace
+
+StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
+  const int degree = config.degree();
+  Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), options.gold};
+  StudyRun run;
+  for (const std::string& name : config.rules) {
+    scorers.rules.emplace_back(findRule(name), degree);
+    const Rule& rule = scorers.rules.back().rule();
+    const int trials = rule.isRandom() ? config.trials : 1;
+    scorers.trials.push_back(trials);
+    run.rules.push_back({rule.name(), rule.sampleCount(), rule.isRandom(), trials});
+  }
+  run.referenceName = scorers.reference.name();
+  run.referenceSamples = scorers.reference.samples();
+  for (std::size_t c = 0; c < config.classes.size(); ++c) {
+    const auto [linkClass, wanted] = config.classes[c];
+    // The class index in the seed is the class's fixed number (unoccluded 0, partial 1), so a
+    // suite's partial links do not change when an unoccluded class is added or removed.
+    run.classes.push_back(
+        runClass(config, options, scorers, std::size_t(linkClass), linkClass, wanted));
+  }
+  return run;
+}
+
+}  // namespace radquad

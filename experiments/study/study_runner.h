@@ -1,0 +1,77 @@
+// The study runner: draws candidate links class by class, keeps those that qualify (partial
+// links: the reference's visible fraction inside the config's range), and scores every rule
+// on them against the reference (and, on request, the gold reference).
+//
+// Determinism: candidate k of class c is drawn from deriveSeed(seed, {c, k, 0}); its
+// reference uses deriveSeed(seed, {c, k, 1}), its gold deriveSeed(seed, {c, k, 2}), and trial
+// t of a random rule deriveSeed(seed, {c, k, 3, t}). Candidates are scored in parallel
+// (oneTBB) and stored by index; the first N qualifying candidates in index order form the
+// suite, so the output does not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/study/study_config.h"
+
+namespace radquad {
+
+struct StudyOptions {
+  bool gold = false;      // also score against the gold reference
+  bool progress = false;  // progress lines on stderr
+};
+
+// The scores of one accepted link. Random rules: means over the trials.
+struct LinkRecord {
+  std::uint64_t candidate = 0;
+  Orientation orientation = Orientation::parallel;
+  OccluderKind occluderKind = OccluderKind::none;
+  double visibleFraction = 1.0;                  // by the reference's rays
+  double referenceRelativeStandardError = 0.0;   // NaN when the reference gives none
+  std::vector<double> referenceL1StandardError;  // per source function; empty when none
+  std::vector<double> relativeError;             // per rule
+  std::vector<std::vector<double>> l1Bound;      // per rule, per source function
+  // With gold: the same against gold, and the reference's own error against gold.
+  std::vector<double> relativeErrorVsGold;
+  std::vector<std::vector<double>> l1BoundVsGold;
+  double referenceRelativeErrorVsGold = 0.0;
+  std::string goldMethod;          // "gauss product" or "dense stratified"
+  double goldRelativeError = 0.0;  // the gold's own error estimate of K[0][0] / K[0][0]
+  std::vector<double> referenceL1BoundVsGold;
+};
+
+struct ClassRun {
+  LinkClass linkClass = LinkClass::partial;
+  int wanted = 0;
+  std::uint64_t generated = 0;
+  std::uint64_t rejectedMostlyVisible = 0;  // visible fraction >= high
+  std::uint64_t rejectedMostlyBlocked = 0;  // visible fraction <= low
+  std::vector<LinkRecord> links;            // accepted, in candidate order
+  std::uint64_t referenceRays = 0;          // over every candidate drawn
+};
+
+struct RuleInfo {
+  std::string name;
+  std::size_t samples = 0;
+  bool random = false;
+  int trials = 1;
+};
+
+struct StudyRun {
+  std::vector<RuleInfo> rules;
+  std::string referenceName;
+  std::size_t referenceSamples = 0;
+  std::vector<ClassRun> classes;
+};
+
+// Throws InputError when a class cannot be filled within max_candidates_per_link.
+StudyRun runStudy(const StudyConfig& config, const StudyOptions& options);
+
+// The error table (the JSON contract of docs/study.md), without `git_commit` and
+// `elapsed_seconds`, which the caller adds.
+nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options,
+                          const StudyRun& run);
+
+}  // namespace radquad

@@ -1,0 +1,34 @@
+#!/bin/bash
+# `radquad study` on bad input: a message naming the file and the problem, exit status 2, and
+# no output file. On good input: a table with the contract's fields, written whole.
+set -u
+radquad="$1"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+expect_input_error() {  # name, config text, text the message must contain
+  printf '%s' "$2" > "$work/$1.json"
+  "$radquad" study "$work/$1.json" --out "$work/$1.out" --quiet 2> "$work/$1.err"
+  local status=$?
+  if [[ $status -ne 2 ]]; then echo "FAIL $1: exit status $status, expected 2"; failures=$((failures + 1)); fi
+  if ! grep -q -- "$3" "$work/$1.err"; then echo "FAIL $1: message lacks '$3':"; cat "$work/$1.err"; failures=$((failures + 1)); fi
+  if ! grep -q -- "$1.json" "$work/$1.err"; then echo "FAIL $1: message does not name the file"; failures=$((failures + 1)); fi
+  if [[ -e "$work/$1.out" ]]; then echo "FAIL $1: wrote an output file"; failures=$((failures + 1)); fi
+}
+
+expect_input_error unknown_key '{"figure": "fig1", "seed": 1, "classes": {"partial": 2}, "rules": ["FullGauss"], "colour": 3}' "unknown key 'colour'"
+expect_input_error unknown_rule '{"figure": "fig1", "seed": 1, "classes": {"partial": 2}, "rules": ["Nope"]}' "unknown rule 'Nope'"
+expect_input_error missing_seed '{"figure": "fig1", "classes": {"partial": 2}, "rules": ["FullGauss"]}' "missing key 'seed'"
+expect_input_error malformed '{"figure": ' "malformed JSON"
+
+printf '%s' '{"figure": "fig2", "seed": 4, "classes": {"unoccluded": 2, "partial": 2}, "rules": ["FullGauss", "MonteCarlo"], "trials": 2, "reference": {"replicates": 2}}' > "$work/good.json"
+if ! "$radquad" study "$work/good.json" --out "$work/good.out" --quiet; then
+  echo "FAIL good: nonzero exit status"; failures=$((failures + 1))
+else
+  for field in '"schema"' '"options"' '"git_commit"' '"reference"' '"elapsed_seconds"' '"classes"' '"per_source_function"' '"l1_error_bound"'; do
+    grep -q -- "$field" "$work/good.out" || { echo "FAIL good: no $field"; failures=$((failures + 1)); }
+  done
+fi
+[[ $failures -eq 0 ]] && echo "study CLI: all checks passed"
+exit $((failures > 0))

@@ -1,0 +1,140 @@
+// CI regression of the study on the quick suites (experiments/configs/fig{1,2}-quick.json,
+// fixed seeds):
+// 1. every rule's error stays under its bound in tests/baselines/quick_bounds.json (bounds
+//    and their margin: tests/baselines/README.md);
+// 2. the report's claims (Gershbein 1995, section 4), as we find them:
+//    (a) constant bases, partial links: Stratified's mean relative error is below
+//        MonteCarlo's, Stroud65's, HierStroud's and ConstSrcGauss's; its ratio to FullGauss's
+//        is printed with a 95% confidence interval;
+//    (b) quadratic bases: FullGauss's total L1 bound is below every Monte Carlo rule's on
+//        unoccluded and on partial links;
+//    (c) constant source function, unoccluded links: LinSrcGauss's bound is below Stratified's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "experiments/json_input.h"
+#include "experiments/study/study_runner.h"
+
+namespace radquad {
+namespace {
+
+const std::filesystem::path kRoot = RADQUAD_SOURCE_DIR;
+
+struct Suite {
+  StudyConfig config;
+  StudyRun run;
+  nlohmann::json table;
+};
+
+// The quick suites, computed once for all tests of this process.
+const Suite& quickSuite(const char* figure) {
+  static std::map<std::string, Suite> suites;
+  auto found = suites.find(figure);
+  if (found == suites.end()) {
+    Suite suite;
+    suite.config =
+        readStudyConfig(kRoot / "experiments/configs" / (std::string(figure) + "-quick.json"));
+    suite.run = runStudy(suite.config, StudyOptions{});
+    suite.table = studyTable(suite.config, StudyOptions{}, suite.run);
+    found = suites.emplace(figure, std::move(suite)).first;
+  }
+  return found->second;
+}
+
+const nlohmann::json& ruleEntry(const nlohmann::json& rules, const std::string& name) {
+  for (const auto& rule : rules) {
+    if (rule["name"] == name) return rule;
+  }
+  throw std::runtime_error("rule " + name + " missing from the table");
+}
+
+std::size_t ruleIndex(const StudyRun& run, const std::string& name) {
+  for (std::size_t r = 0; r < run.rules.size(); ++r) {
+    if (run.rules[r].name == name) return r;
+  }
+  throw std::runtime_error("rule " + name + " missing from the run");
+}
+
+TEST(StudyBaselines, EveryRuleStaysUnderItsBound) {
+  const nlohmann::json baselines = readJsonFile(kRoot / "tests/baselines/quick_bounds.json");
+  const nlohmann::json& fig1 = quickSuite("fig1").table;
+  const nlohmann::json& fig2 = quickSuite("fig2").table;
+  int checked = 0;
+  for (const auto& [name, bound] : baselines["fig1"]["relative_error_mean"].items()) {
+    const double measured = ruleEntry(fig1["rules"], name)["relative_error"]["mean"];
+    EXPECT_LE(measured, bound.get<double>()) << "fig1 " << name << " mean relative error";
+    ++checked;
+  }
+  for (const char* linkClass : {"unoccluded", "partial"}) {
+    const auto& rules = fig2["classes"][linkClass]["rules"];
+    for (const auto& [name, bound] : baselines["fig2"][linkClass]["l1_total"].items()) {
+      const double measured = ruleEntry(rules, name)["l1_error_bound"]["total"];
+      EXPECT_LE(measured, bound.get<double>())
+          << "fig2 " << linkClass << " " << name << " total L1 bound";
+      ++checked;
+    }
+    for (const auto& [name, bound] : baselines["fig2"][linkClass]["l1_constant_source"].items()) {
+      const double measured = ruleEntry(rules, name)["l1_error_bound"]["per_source_function"][0];
+      EXPECT_LE(measured, bound.get<double>())
+          << "fig2 " << linkClass << " " << name << " constant source";
+      ++checked;
+    }
+  }
+  // Every rule of the quick suites has a bound for each metric.
+  EXPECT_EQ(checked, int(fig1["rules"].size() + 4 * fig2["classes"]["partial"]["rules"].size()));
+}
+
+TEST(StudyClaims, ConstantBasesPartialLinksStratifiedBeatsTheOthers) {
+  const Suite& suite = quickSuite("fig1");
+  const auto& rules = suite.table["rules"];
+  const double stratified = ruleEntry(rules, "Stratified")["relative_error"]["mean"];
+  for (const char* other : {"MonteCarlo", "Stroud65", "HierStroud", "ConstSrcGauss"}) {
+    EXPECT_LT(stratified, ruleEntry(rules, other)["relative_error"]["mean"].get<double>())
+        << "Stratified against " << other;
+  }
+  // Ratio of means Stratified / FullGauss over the same links, with a 95% interval by the
+  // delta method on the paired per-link errors.
+  const std::size_t s = ruleIndex(suite.run, "Stratified"), f = ruleIndex(suite.run, "FullGauss");
+  const auto& links = suite.run.classes.front().links;
+  const double n = double(links.size());
+  double meanS = 0, meanF = 0;
+  for (const LinkRecord& link : links) {
+    meanS += link.relativeError[s] / n;
+    meanF += link.relativeError[f] / n;
+  }
+  const double ratio = meanS / meanF;
+  double variance = 0;  // of the linearised ratio: (S - ratio F) / meanF
+  for (const LinkRecord& link : links) {
+    const double z = (link.relativeError[s] - ratio * link.relativeError[f]) / meanF;
+    variance += z * z / (n - 1);
+  }
+  const double half = 1.96 * std::sqrt(variance / n);
+  std::cout << "Stratified / FullGauss mean relative error, constant bases, partial links: "
+            << ratio << " (95% CI " << ratio - half << " .. " << ratio + half << ", "
+            << links.size() << " links)\n";
+  EXPECT_TRUE(std::isfinite(ratio));
+}
+
+TEST(StudyClaims, QuadraticBasesFullGaussBeatsEveryMonteCarloRule) {
+  const nlohmann::json& table = quickSuite("fig2").table;
+  for (const char* linkClass : {"unoccluded", "partial"}) {
+    const auto& rules = table["classes"][linkClass]["rules"];
+    const double fullGauss = ruleEntry(rules, "FullGauss")["l1_error_bound"]["total"];
+    for (const char* other : {"MonteCarlo", "NRook", "Stratified"}) {
+      EXPECT_LT(fullGauss, ruleEntry(rules, other)["l1_error_bound"]["total"].get<double>())
+          << linkClass << ": FullGauss against " << other;
+    }
+  }
+}
+
+TEST(StudyClaims, ConstantSourceUnoccludedLinSrcGaussBeatsStratified) {
+  const auto& rules = quickSuite("fig2").table["classes"]["unoccluded"]["rules"];
+  EXPECT_LT(
+      ruleEntry(rules, "LinSrcGauss")["l1_error_bound"]["per_source_function"][0].get<double>(),
+      ruleEntry(rules, "Stratified")["l1_error_bound"]["per_source_function"][0].get<double>());
+}
+
+}  // namespace
+}  // namespace radquad
