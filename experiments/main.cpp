@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   radquad::addLinkCommand(app);
   radquad::addRulesCommand(app);
+  radquad::addSolveCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

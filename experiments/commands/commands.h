@@ -8,5 +8,6 @@ namespace radquad {
 
 void addLinkCommand(CLI::App& app);
 void addRulesCommand(CLI::App& app);
+void addSolveCommand(CLI::App& app);
 
 }  // namespace radquad
