@@ -1,7 +1,8 @@
 // The built-in scenes.
 //   cornell: a closed 5.5-unit Cornell-style box (red left wall, green right wall, white
-//            floor, ceiling, back and front walls), a short and a tall block standing on the
-//            floor, and an area light just below the ceiling's centre, facing down.
+//            floor, ceiling, back and front walls; the camera at the front wall), a short and a
+//            tall block standing on the floor, and an area light just below the ceiling's centre,
+//            facing down.
 //   slats:   a 6 x 3 x 4 room split by a screen of tilted two-sided slats; a window-like
 //            emitter on the left wall lights the right half only through the slats, so
 //            most links across the screen are partially occluded.
@@ -32,8 +33,8 @@ void addRoom(Scene& scene, const Vec& size, const Vec& left, const Vec& right, c
   const Vec x = Vec::UnitX() * size.x(), y = Vec::UnitY() * size.y(), z = Vec::UnitZ() * size.z();
   addPatch(scene, "floor", facingPatch(Vec::Zero(), x, z, Vec::UnitY(), "floor"), white);
   addPatch(scene, "ceiling", facingPatch(y, x, z, -Vec::UnitY(), "ceiling"), white);
-  addPatch(scene, "back wall", facingPatch(z, x, y, -Vec::UnitZ(), "back wall"), white);
-  addPatch(scene, "front wall", facingPatch(Vec::Zero(), x, y, Vec::UnitZ(), "front wall"), white);
+  addPatch(scene, "front wall", facingPatch(z, x, y, -Vec::UnitZ(), "front wall"), white);
+  addPatch(scene, "back wall", facingPatch(Vec::Zero(), x, y, Vec::UnitZ(), "back wall"), white);
   addPatch(scene, "left wall", facingPatch(Vec::Zero(), z, y, Vec::UnitX(), "left wall"), left);
   addPatch(scene, "right wall", facingPatch(x, z, y, -Vec::UnitX(), "right wall"), right);
 }
@@ -58,8 +59,8 @@ Scene cornellScene() {
   const double size = 5.5;
   const Vec white(0.725, 0.71, 0.68), red(0.63, 0.065, 0.05), green(0.14, 0.45, 0.091);
   addRoom(scene, Vec::Constant(size), red, green, white);
-  addBlock(scene, "short block", 3.7, 2.0, 1.65, 1.65, 1.65, -0.29, white);
-  addBlock(scene, "tall block", 1.9, 3.6, 1.65, 1.65, 3.3, 0.29, white);
+  addBlock(scene, "short block", 3.75, 2.6, 1.65, 1.65, 1.65, -0.29, white);
+  addBlock(scene, "tall block", 1.85, 1.7, 1.65, 1.65, 3.3, 0.29, white);
   // The light hangs 1e-3 of the box below the ceiling, so the ceiling never touches it.
   const double lightY = size * (1.0 - 1e-3);
   const Vec lightOrigin(0.5 * size - 0.65, lightY, 0.5 * size - 0.525);
@@ -67,8 +68,8 @@ Scene cornellScene() {
            facingPatch(lightOrigin, Vec(1.3, 0, 0), Vec(0, 0, 1.05), -Vec::UnitY(), "light"),
            Vec::Constant(0.78), Vec(40.0, 32.0, 24.0));
   Camera camera;
-  camera.eye = Vec(0.5 * size, 0.5 * size, 0.05);
-  camera.lookAt = Vec(0.5 * size, 0.5 * size, size);
+  camera.eye = Vec(0.5 * size, 0.5 * size, size - 0.05);
+  camera.lookAt = Vec(0.5 * size, 0.5 * size, 0.0);
   camera.up = Vec::UnitY();
   camera.fovDegrees = 75.0;
   scene.camera = camera;

@@ -30,11 +30,13 @@ Solver::Solver(const Scene& scene, SolverOptions options)
     : scene_(scene), options_(std::move(options)) {
   impl_ = std::make_unique<Impl>(scene, options_.degree);
   hierarchy_ = std::make_unique<Hierarchy>(scene, options_.degree);
-  double largestArea = 0.0;
+  double largestArea = 0.0, totalArea = 0.0, emittedPower = 0.0;
   for (const ScenePatch& patch : scene.patches) {
     largestArea = std::max(largestArea, patch.patch.area);
-    maxEmission_ = std::max(maxEmission_, patch.emission.maxCoeff());
+    totalArea += patch.patch.area;
+    emittedPower += patch.emission.maxCoeff() * patch.patch.area;
   }
+  radiosityScale_ = emittedPower / totalArea;
   minArea_ = options_.minArea > 0.0 ? options_.minArea : 1e-4 * largestArea;
 }
 
@@ -102,7 +104,7 @@ bool Solver::oracleSaysRefine(const SolverLink& link) const {
                          receiver.geometry.area / (piR2 + receiver.geometry.area));
   double estimate = formFactor * std::max(0.0, source.meanRadiosity().maxCoeff());
   if (link.visibility == LinkClass::kPartial) estimate *= options_.partialFactor;
-  return estimate > options_.bfEpsilon * maxEmission_;
+  return estimate > options_.bfEpsilon * radiosityScale_;
 }
 
 // Splits every active link the oracle rejects into links to the larger element's children,

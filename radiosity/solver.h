@@ -28,8 +28,9 @@ struct SolverOptions {
   int degree = 0;
   RuleChoice rules = RuleChoice::kFixed;
   // BF oracle: refine a link when F_estimate * B_source (* partialFactor if partial) exceeds
-  // bfEpsilon times the scene's largest emitted radiosity ...
-  double bfEpsilon = 0.01;
+  // bfEpsilon times the scene's radiosity scale, its emitted power over its total area
+  // (sum_i max_c E_i,c A_i / sum_i A_i: the mean radiosity before any reflection) ...
+  double bfEpsilon = 0.1;
   // ... and the larger element's area exceeds minArea (scene units squared); a value <= 0
   // means 1e-4 of the largest patch's area.
   double minArea = 0.0;
@@ -119,7 +120,7 @@ class Solver {
   std::vector<SolverLink> links_;
   SolveStatistics statistics_;
   double minArea_ = 0.0;
-  double maxEmission_ = 0.0;
+  double radiosityScale_ = 0.0;  // the emitted power over the total area
 };
 
 }  // namespace radquad

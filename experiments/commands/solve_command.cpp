@@ -148,7 +148,7 @@ void addSolveCommand(CLI::App& app) {
                       "Write a PNG of the solution from the scene's camera");
   command
       ->add_option("--bf-eps", options->bfEpsilon,
-                   "BF oracle threshold, relative to the largest emitted radiosity")
+                   "BF oracle threshold, relative to the emitted power per unit scene area")
       ->capture_default_str();
   command
       ->add_option("--min-area", options->minArea,

@@ -30,6 +30,7 @@ TEST_P(FurnaceTest, RadiosityIsEmissionOverOneMinusReflectance) {
   SolverOptions options;
   options.degree = param.degree;
   options.minArea = param.minArea;
+  options.bfEpsilon = 0.01;
   Solver solver(scene, options);
   solver.solve();
   ASSERT_TRUE(solver.statistics().converged);
@@ -60,6 +61,7 @@ TEST(OpposedSquaresTest, ReceiverMeanRadiosityIsReflectanceTimesFormFactor) {
   for (int degree = 0; degree <= 3; ++degree) {
     SolverOptions options;
     options.degree = degree;
+    options.bfEpsilon = 0.01;
     Solver solver(scene, options);
     solver.solve();
     const double expected = rho * testing::kOpposedUnitSquaresFormFactor;
@@ -74,7 +76,7 @@ TEST(SolverDeterminismTest, ResultDoesNotDependOnTheThreadCount) {
   const Scene scene = *builtinScene("cornell");
   SolverOptions options;
   options.degree = 1;
-  options.bfEpsilon = 0.05;
+  options.bfEpsilon = 0.5;
   auto solveWith = [&](std::size_t threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     auto solver = std::make_unique<Solver>(scene, options);
