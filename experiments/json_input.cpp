@@ -17,6 +17,9 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
     return nlohmann::json::parse(text.str());
   } catch (const nlohmann::json::parse_error& error) {
     throw InputError(path.string() + ": malformed JSON: " + error.what());
+  } catch (const nlohmann::json::out_of_range& error) {
+    // A literal such as 1e999 overflows to infinity while parsing.
+    throw InputError(path.string() + ": non-finite number: " + error.what());
   }
 }
 

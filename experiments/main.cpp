@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   CLI::App app{"radquad: quadrature of irradiance couplings in Galerkin radiosity"};
   app.require_subcommand(1);
   radquad::addLinkCommand(app);
+  radquad::addReferenceCommand(app);
   radquad::addRulesCommand(app);
   radquad::addSolveCommand(app);
   try {

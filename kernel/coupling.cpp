@@ -11,35 +11,61 @@ namespace radquad {
 namespace {
 
 // Positions and normal projections of a patch's sample points, structure-of-arrays.
-void placePoints(const Patch& patch, const double* u, const double* v, std::size_t count,
-                 const Eigen::Vector3d& otherNormal, std::vector<double>& x, std::vector<double>& y,
-                 std::vector<double>& z, std::vector<double>& ownNormalDot,
-                 std::vector<double>& otherNormalDot) {
-  x.resize(count);
-  y.resize(count);
-  z.resize(count);
-  ownNormalDot.resize(count);
-  otherNormalDot.resize(count);
-  const Eigen::Vector3d& o = patch.origin;
-  const Eigen::Vector3d& a = patch.edgeU;
-  const Eigen::Vector3d& b = patch.edgeV;
-  const Eigen::Vector3d& n = patch.normal;
+void placePoints(const Patch& patch, const double* __restrict u, const double* __restrict v,
+                 std::size_t count, const Eigen::Vector3d& otherNormal, std::vector<double>& xs,
+                 std::vector<double>& ys, std::vector<double>& zs,
+                 std::vector<double>& ownNormalDots, std::vector<double>& otherNormalDots) {
+  for (auto* column : {&xs, &ys, &zs, &ownNormalDots, &otherNormalDots}) column->resize(count);
+  double* __restrict x = xs.data();
+  double* __restrict y = ys.data();
+  double* __restrict z = zs.data();
+  double* __restrict ownNormalDot = ownNormalDots.data();
+  double* __restrict otherNormalDot = otherNormalDots.data();
+  const double ox = patch.origin.x(), oy = patch.origin.y(), oz = patch.origin.z();
+  const double ax = patch.edgeU.x(), ay = patch.edgeU.y(), az = patch.edgeU.z();
+  const double bx = patch.edgeV.x(), by = patch.edgeV.y(), bz = patch.edgeV.z();
+  const double nx = patch.normal.x(), ny = patch.normal.y(), nz = patch.normal.z();
+  const double mx = otherNormal.x(), my = otherNormal.y(), mz = otherNormal.z();
   for (std::size_t k = 0; k < count; ++k) {
-    x[k] = o.x() + u[k] * a.x() + v[k] * b.x();
-    y[k] = o.y() + u[k] * a.y() + v[k] * b.y();
-    z[k] = o.z() + u[k] * a.z() + v[k] * b.z();
-    ownNormalDot[k] = n.x() * x[k] + n.y() * y[k] + n.z() * z[k];
-    otherNormalDot[k] = otherNormal.x() * x[k] + otherNormal.y() * y[k] + otherNormal.z() * z[k];
+    x[k] = ox + u[k] * ax + v[k] * bx;
+    y[k] = oy + u[k] * ay + v[k] * by;
+    z[k] = oz + u[k] * az + v[k] * bz;
+    ownNormalDot[k] = nx * x[k] + ny * y[k] + nz * z[k];
+    otherNormalDot[k] = mx * x[k] + my * y[k] + mz * z[k];
   }
 }
 
 // cos(theta) cos(theta') |d|^2 / |d|^4 with d = y - x:
 // n_r.d = n_r.y - n_r.x and -n_s.d = n_s.x - n_s.y.
-inline double kernelTimesPi(double dx, double dy, double dz, double receiverCos,
-                            double sourceCos) {
+inline double kernelTimesPi(double dx, double dy, double dz, double receiverCos, double sourceCos) {
   const double r2 = dx * dx + dy * dy + dz * dz;
   const double c = std::max(receiverCos, 0.0) * std::max(sourceCos, 0.0);
   return c / (r2 * r2);
+}
+
+// phi_k at `count` points, k = 0..degree, written out[k * stride + r]: Bonnet's recurrence
+// (k+1) P_{k+1}(y) = (2k+1) y P_k(y) - k P_{k-1}(y), y = 2x - 1, then phi_k = sqrt(2k+1) P_k,
+// as shiftedLegendreValues, but across points so that it vectorises.
+void legendreAcrossPoints(int degree, const double* __restrict x, std::size_t count,
+                          std::size_t stride, double* __restrict out) {
+  for (std::size_t r = 0; r < count; ++r) out[r] = 1.0;
+  if (degree >= 1) {
+    for (std::size_t r = 0; r < count; ++r) out[stride + r] = 2.0 * x[r] - 1.0;
+  }
+  for (int k = 1; k < degree; ++k) {
+    const double a = 2.0 * k + 1.0, c = double(k), d = k + 1.0;
+    const double* __restrict previous = out + std::size_t(k - 1) * stride;
+    const double* __restrict current = out + std::size_t(k) * stride;
+    double* __restrict next = out + std::size_t(k + 1) * stride;
+    for (std::size_t r = 0; r < count; ++r) {
+      next[r] = (a * (2.0 * x[r] - 1.0) * current[r] - c * previous[r]) / d;
+    }
+  }
+  for (int k = 1; k <= degree; ++k) {
+    const double scale = std::sqrt(2.0 * k + 1.0);
+    double* __restrict row = out + std::size_t(k) * stride;
+    for (std::size_t r = 0; r < count; ++r) row[r] *= scale;
+  }
 }
 
 }  // namespace
@@ -67,11 +93,10 @@ double unoccludedKernel(const Patch& receiver, const Eigen::Vector3d& x, const P
 
 void CouplingAccumulator::castRays(const Link& link, std::vector<double>& kernel,
                                    LinkIntegral& result) {
-  rayVisible_.resize(segments_.size());
-  link.occluders->testSegments(segments_, rayVisible_.data());
+  link.occluders->trace(segments_);
   std::uint64_t blocked = 0;
   for (std::size_t r = 0; r < rayPairs_.size(); ++r) {
-    if (!rayVisible_[r]) {
+    if (!segments_.visible(r)) {
       kernel[rayPairs_[r]] = 0.0;
       ++blocked;
     }
@@ -80,15 +105,55 @@ void CouplingAccumulator::castRays(const Link& link, std::vector<double>& kernel
   result.raysBlocked = blocked;
 }
 
+namespace {
+
+// coupling (column-major F x F) = receiverBasis^T (nr x F) * (kernel (nr x ns) * sourceBasis
+// (ns x F)), with F known at compile time so the inner loops unroll into full vectors. Both
+// stages accumulate in registers: first each receiver point's row of the partial product,
+// then each column of the coupling.
+template <int F>
+void contractProduct(std::size_t nr, std::size_t ns, const double* __restrict kernel,
+                     const double* __restrict receiverBasis, const double* __restrict sourceBasis,
+                     double* __restrict partial, double* __restrict coupling) {
+  for (std::size_t i = 0; i < nr; ++i) {
+    double row[F] = {};
+    const double* __restrict g = kernel + i * ns;
+    for (std::size_t j = 0; j < ns; ++j) {
+      const double* __restrict basis = sourceBasis + j * F;
+      for (int b = 0; b < F; ++b) row[b] += g[j] * basis[b];
+    }
+    for (int b = 0; b < F; ++b) partial[i * F + b] = row[b];
+  }
+  for (int b = 0; b < F; ++b) {
+    double column[F] = {};
+    for (std::size_t i = 0; i < nr; ++i) {
+      const double p = partial[i * F + b];
+      const double* __restrict basis = receiverBasis + i * F;
+      for (int a = 0; a < F; ++a) column[a] += basis[a] * p;
+    }
+    for (int a = 0; a < F; ++a) coupling[b * F + a] = column[a];
+  }
+}
+
+using ContractFunction = void (*)(std::size_t, std::size_t, const double*, const double*,
+                                  const double*, double*, double*);
+
+// Indexed by basis degree d = 0..kMaxBasisDegree, F = (d+1)^2.
+constexpr ContractFunction kContract[kMaxBasisDegree + 1] = {
+    contractProduct<1>,  contractProduct<4>,  contractProduct<9>,
+    contractProduct<16>, contractProduct<25>, contractProduct<36>,
+    contractProduct<49>, contractProduct<64>, contractProduct<81>};
+
+}  // namespace
+
 void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver,
                                   const WeightedBasisTable& receiverBasis,
-                                  const PatchSamples& source,
-                                  const WeightedBasisTable& sourceBasis, LinkIntegral& result) {
-  assert(receiverBasis.functions == sourceBasis.functions);
+                                  const PatchSamples& source, const WeightedBasisTable& sourceBasis,
+                                  LinkIntegral& result) {
+  assert(receiverBasis.degree == sourceBasis.degree);
   assert(receiverBasis.points() == receiver.size() && sourceBasis.points() == source.size());
   const std::size_t nr = receiver.size();
   const std::size_t ns = source.size();
-  const std::size_t functions = std::size_t(receiverBasis.functions);
   const Patch& r = link.receiver;
   const Patch& s = link.source;
   placePoints(r, receiver.u.data(), receiver.v.data(), nr, s.normal, receiverX_, receiverY_,
@@ -118,43 +183,70 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
   result.raysCast = 0;
   result.raysBlocked = 0;
   if (link.hasOccluders()) {
-    segments_.clear();
-    rayPairs_.clear();
-    for (std::size_t i = 0; i < nr; ++i) {
-      for (std::size_t j = 0; j < ns; ++j) {
-        if (kernel_[i * ns + j] <= 0.0) continue;
-        const Eigen::Vector3d from(receiverX_[i], receiverY_[i], receiverZ_[i]);
-        const Eigen::Vector3d to(sourceX_[j], sourceY_[j], sourceZ_[j]);
-        segments_.push(from, to - from);
-        rayPairs_.push_back(std::uint32_t(i * ns + j));
+    const std::size_t pairs = nr * ns;
+    std::size_t positive = 0;
+    for (std::size_t k = 0; k < pairs; ++k) positive += kernel_[k] > 0.0 ? 1 : 0;
+    if (positive == pairs) {
+      // Every pair faces the other (the usual case): one ray per pair in pair order, filled
+      // and applied without branches.
+      for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_,
+                           &rayDirectionY_, &rayDirectionZ_, &rayFar_}) {
+        column->resize(pairs);
       }
+      for (std::size_t i = 0; i < nr; ++i) {
+        const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
+        float* __restrict ox = rayOriginX_.data() + i * ns;
+        float* __restrict oy = rayOriginY_.data() + i * ns;
+        float* __restrict oz = rayOriginZ_.data() + i * ns;
+        float* __restrict dx = rayDirectionX_.data() + i * ns;
+        float* __restrict dy = rayDirectionY_.data() + i * ns;
+        float* __restrict dz = rayDirectionZ_.data() + i * ns;
+        for (std::size_t j = 0; j < ns; ++j) {
+          ox[j] = float(xi);
+          oy[j] = float(yi);
+          oz[j] = float(zi);
+          dx[j] = float(sourceX_[j] - xi);
+          dy[j] = float(sourceY_[j] - yi);
+          dz[j] = float(sourceZ_[j] - zi);
+        }
+      }
+      segments_.assign(pairs, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
+                       rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
+      link.occluders->trace(segments_);
+      segments_.farEnds(rayFar_.data());
+      std::uint64_t blocked = 0;
+      const float* __restrict far = rayFar_.data();
+      double* __restrict kernel = kernel_.data();
+      for (std::size_t k = 0; k < pairs; ++k) {
+        const bool visible = far[k] >= 0.0f;
+        kernel[k] = visible ? kernel[k] : 0.0;
+        blocked += visible ? 0 : 1;
+      }
+      result.raysCast = pairs;
+      result.raysBlocked = blocked;
+    } else {
+      segments_.resize(positive);
+      rayPairs_.resize(positive);
+      std::size_t rays = 0;
+      for (std::size_t i = 0; i < nr; ++i) {
+        for (std::size_t j = 0; j < ns; ++j) {
+          if (kernel_[i * ns + j] <= 0.0) continue;
+          segments_.set(rays, receiverX_[i], receiverY_[i], receiverZ_[i],
+                        sourceX_[j] - receiverX_[i], sourceY_[j] - receiverY_[i],
+                        sourceZ_[j] - receiverZ_[i]);
+          rayPairs_[rays++] = std::uint32_t(i * ns + j);
+        }
+      }
+      castRays(link, kernel_, result);
     }
-    castRays(link, kernel_, result);
   }
 
-  // partial = kernel (nr x ns) * sourceBasis (ns x functions), then
-  // coupling = receiverBasis^T (functions x nr) * partial.
-  partial_.assign(nr * functions, 0.0);
-  for (std::size_t i = 0; i < nr; ++i) {
-    double* __restrict out = partial_.data() + i * functions;
-    const double* __restrict row = kernel_.data() + i * ns;
-    for (std::size_t j = 0; j < ns; ++j) {
-      const double g = row[j];
-      const double* __restrict basis = sourceBasis.values.data() + j * functions;
-      for (std::size_t b = 0; b < functions; ++b) out[b] += g * basis[b];
-    }
-  }
-  result.coupling.setZero(Eigen::Index(functions), Eigen::Index(functions));
-  double* __restrict coupling = result.coupling.data();  // column-major: (a, b) at b*F + a
-  for (std::size_t i = 0; i < nr; ++i) {
-    const double* __restrict basis = receiverBasis.values.data() + i * functions;
-    const double* __restrict partialRow = partial_.data() + i * functions;
-    for (std::size_t b = 0; b < functions; ++b) {
-      const double p = partialRow[b];
-      double* __restrict column = coupling + b * functions;
-      for (std::size_t a = 0; a < functions; ++a) column[a] += basis[a] * p;
-    }
-  }
+  const int degree = receiverBasis.degree;
+  const int functions = basisFunctionCount(degree);
+  result.coupling.resize(functions, functions);
+  partial_.resize(nr * std::size_t(functions));
+  kContract[degree](nr, ns, kernel_.data(), receiverBasis.values.data(), sourceBasis.values.data(),
+                    partial_.data(), result.coupling.data());
   result.coupling *= std::sqrt(r.area * s.area) / std::numbers::pi;
   result.formFactor = result.coupling(0, 0) * std::sqrt(s.area / r.area);
   result.kernelEvaluations = nr * ns;
@@ -168,27 +260,28 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
   const Patch& s = link.source;
   placePoints(r, samples.s.data(), samples.t.data(), count, s.normal, receiverX_, receiverY_,
               receiverZ_, receiverNormalDot_, receiverSourceDot_);
-  placePoints(s, samples.u.data(), samples.v.data(), count, r.normal, sourceX_, sourceY_,
-              sourceZ_, sourceNormalDot_, sourceReceiverDot_);
+  placePoints(s, samples.u.data(), samples.v.data(), count, r.normal, sourceX_, sourceY_, sourceZ_,
+              sourceNormalDot_, sourceReceiverDot_);
   kernel_.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
-    kernel_[k] = kernelTimesPi(sourceX_[k] - receiverX_[k], sourceY_[k] - receiverY_[k],
-                               sourceZ_[k] - receiverZ_[k],
-                               sourceReceiverDot_[k] - receiverNormalDot_[k],
-                               receiverSourceDot_[k] - sourceNormalDot_[k]);
+    kernel_[k] = kernelTimesPi(
+        sourceX_[k] - receiverX_[k], sourceY_[k] - receiverY_[k], sourceZ_[k] - receiverZ_[k],
+        sourceReceiverDot_[k] - receiverNormalDot_[k], receiverSourceDot_[k] - sourceNormalDot_[k]);
   }
   result.raysCast = 0;
   result.raysBlocked = 0;
   if (link.hasOccluders()) {
-    segments_.clear();
-    rayPairs_.clear();
+    segments_.resize(count);
+    rayPairs_.resize(count);
+    std::size_t rays = 0;
     for (std::size_t k = 0; k < count; ++k) {
       if (kernel_[k] <= 0.0) continue;
-      const Eigen::Vector3d from(receiverX_[k], receiverY_[k], receiverZ_[k]);
-      const Eigen::Vector3d to(sourceX_[k], sourceY_[k], sourceZ_[k]);
-      segments_.push(from, to - from);
-      rayPairs_.push_back(std::uint32_t(k));
+      segments_.set(rays, receiverX_[k], receiverY_[k], receiverZ_[k], sourceX_[k] - receiverX_[k],
+                    sourceY_[k] - receiverY_[k], sourceZ_[k] - receiverZ_[k]);
+      rayPairs_[rays++] = std::uint32_t(k);
     }
+    segments_.resize(rays);
+    rayPairs_.resize(rays);
     castRays(link, kernel_, result);
   }
 
@@ -201,23 +294,48 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
   } else {
     // Blocks keep the basis tables in cache: coupling += receiverBlock^T sourceBlock with
     // receiverBlock(k, a) = w_k G_k phi_a(s_k, t_k) and sourceBlock(k, b) = phi_b(u_k, v_k).
-    constexpr std::size_t kBlock = 512;
+    // The one-dimensional values are computed across the block's points (vectorised), then
+    // the tensor products column by column (column-major: a column is contiguous in k).
+    constexpr std::size_t kBlock = 256;
+    const int n1 = degree + 1;
     receiverBlock_.resize(kBlock, functions);
     sourceBlock_.resize(kBlock, functions);
-    double values[basisFunctionCount(kMaxBasisDegree)];
+    legendre_.resize(4 * std::size_t(n1) * kBlock);
+    weightedKernel_.resize(kBlock);
+    double* alongS = legendre_.data();
+    double* alongT = alongS + std::size_t(n1) * kBlock;
+    double* alongU = alongT + std::size_t(n1) * kBlock;
+    double* alongV = alongU + std::size_t(n1) * kBlock;
     for (std::size_t start = 0; start < count; start += kBlock) {
       const std::size_t rows = std::min(kBlock, count - start);
-      for (std::size_t row = 0; row < rows; ++row) {
-        const std::size_t k = start + row;
-        const double scale = samples.weight[k] * kernel_[k];
-        tensorBasisValues(degree, samples.s[k], samples.t[k], values);
-        for (int a = 0; a < functions; ++a) receiverBlock_(Eigen::Index(row), a) = scale * values[a];
-        tensorBasisValues(degree, samples.u[k], samples.v[k], values);
-        for (int b = 0; b < functions; ++b) sourceBlock_(Eigen::Index(row), b) = values[b];
+      legendreAcrossPoints(degree, samples.s.data() + start, rows, kBlock, alongS);
+      legendreAcrossPoints(degree, samples.t.data() + start, rows, kBlock, alongT);
+      legendreAcrossPoints(degree, samples.u.data() + start, rows, kBlock, alongU);
+      legendreAcrossPoints(degree, samples.v.data() + start, rows, kBlock, alongV);
+      {
+        const double* __restrict w = samples.weight.data() + start;
+        const double* __restrict g = kernel_.data() + start;
+        double* __restrict wg = weightedKernel_.data();
+        for (std::size_t row = 0; row < rows; ++row) wg[row] = w[row] * g[row];
+      }
+      for (int i = 0; i < n1; ++i) {
+        for (int j = 0; j < n1; ++j) {
+          const int a = i * n1 + j;
+          const double* __restrict ls = alongS + std::size_t(i) * kBlock;
+          const double* __restrict lt = alongT + std::size_t(j) * kBlock;
+          const double* __restrict lu = alongU + std::size_t(i) * kBlock;
+          const double* __restrict lv = alongV + std::size_t(j) * kBlock;
+          const double* __restrict wg = weightedKernel_.data();
+          double* __restrict receiverColumn = receiverBlock_.col(a).data();
+          double* __restrict sourceColumn = sourceBlock_.col(a).data();
+          for (std::size_t row = 0; row < rows; ++row) {
+            receiverColumn[row] = wg[row] * (ls[row] * lt[row]);
+            sourceColumn[row] = lu[row] * lv[row];
+          }
+        }
       }
       const auto n = Eigen::Index(rows);
-      result.coupling.noalias() +=
-          receiverBlock_.topRows(n).transpose() * sourceBlock_.topRows(n);
+      result.coupling.noalias() += receiverBlock_.topRows(n).transpose() * sourceBlock_.topRows(n);
     }
   }
   result.coupling *= std::sqrt(r.area * s.area) / std::numbers::pi;

@@ -34,7 +34,7 @@ struct LinkIntegral {
   Eigen::MatrixXd coupling;  // rows: receiver functions a, columns: source functions b
   double formFactor = 0.0;   // (1/A_r) int int G dA' dA = K[0][0] sqrt(A_s/A_r)
   std::uint64_t kernelEvaluations = 0;
-  std::uint64_t raysCast = 0;     // one per evaluation whose unoccluded kernel is positive
+  std::uint64_t raysCast = 0;  // one per evaluation whose unoccluded kernel is positive
   std::uint64_t raysBlocked = 0;
 
   // The fraction of cast rays that were not blocked (1 when none was cast).
@@ -79,9 +79,11 @@ class CouplingAccumulator {
   std::vector<double> kernel_;
   std::vector<double> partial_;
   std::vector<std::uint32_t> rayPairs_;
-  std::vector<std::uint8_t> rayVisible_;
+  std::vector<float> rayOriginX_, rayOriginY_, rayOriginZ_;
+  std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_, rayFar_;
   SegmentBatch segments_;
   Eigen::MatrixXd receiverBlock_, sourceBlock_;
+  std::vector<double> legendre_, weightedKernel_;
 };
 
 }  // namespace radquad

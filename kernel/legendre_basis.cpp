@@ -62,14 +62,17 @@ double legendreAbsoluteIntegral(int order) {
     if ((phi(lo) < 0) == (phi(hi) < 0)) continue;
     for (int iteration = 0; iteration < 200; ++iteration) {
       const double mid = 0.5 * (lo + hi);
-      if ((phi(lo) < 0) == (phi(mid) < 0)) lo = mid; else hi = mid;
+      if ((phi(lo) < 0) == (phi(mid) < 0))
+        lo = mid;
+      else
+        hi = mid;
     }
     breaks[count++] = 0.5 * (lo + hi);
   }
   breaks[count++] = 1.0;
   // 5-point Gauss-Legendre on [-1,1] is exact to degree 9 >= kMaxBasisDegree.
-  static const double nodes[5] = {0.0, -0.5384693101056831, 0.5384693101056831,
-                                  -0.9061798459386640, 0.9061798459386640};
+  static const double nodes[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                  0.9061798459386640};
   static const double weights[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
                                     0.2369268850561891, 0.2369268850561891};
   double total = 0.0;
@@ -77,7 +80,8 @@ double legendreAbsoluteIntegral(int order) {
     const double a = breaks[interval];
     const double b = breaks[interval + 1];
     for (int q = 0; q < 5; ++q) {
-      total += 0.5 * (b - a) * weights[q] * std::fabs(phi(0.5 * (a + b) + 0.5 * (b - a) * nodes[q]));
+      total +=
+          0.5 * (b - a) * weights[q] * std::fabs(phi(0.5 * (a + b) + 0.5 * (b - a) * nodes[q]));
     }
   }
   return total;

@@ -15,7 +15,9 @@ inline constexpr int kMaxBasisDegree = 8;
 void validateBasisDegree(int degree);
 
 // Number of tensor basis functions (d+1)^2 of degree d.
-inline constexpr int basisFunctionCount(int degree) { return (degree + 1) * (degree + 1); }
+inline constexpr int basisFunctionCount(int degree) {
+  return (degree + 1) * (degree + 1);
+}
 
 // Writes phi_0(t) .. phi_order(t) to values[0..order].
 void shiftedLegendreValues(int order, double t, double* values);

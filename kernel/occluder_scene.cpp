@@ -27,25 +27,54 @@ RTCDevice embreeDevice() {
   return device;
 }
 
-void SegmentBatch::clear() {
-  for (auto* column : {&originX, &originY, &originZ, &directionX, &directionY, &directionZ}) {
-    column->clear();
+void SegmentBatch::resize(std::size_t count) {
+  const std::size_t packets = (count + 15) / 16;
+  if (packets > packets_.size()) {
+    RTCRay16 fresh;
+    for (int lane = 0; lane < 16; ++lane) {
+      fresh.org_x[lane] = fresh.org_y[lane] = fresh.org_z[lane] = 0.0f;
+      fresh.dir_x[lane] = fresh.dir_y[lane] = fresh.dir_z[lane] = 0.0f;
+      fresh.tnear[lane] = kSegmentEpsilon;
+      fresh.tfar[lane] = 1.0f - kSegmentEpsilon;
+      fresh.time[lane] = 0.0f;
+      fresh.mask[lane] = 0xFFFFFFFFu;
+      fresh.id[lane] = 0;
+      fresh.flags[lane] = 0;
+    }
+    packets_.resize(packets, fresh);
   }
-}
-
-void SegmentBatch::reserve(std::size_t count) {
-  for (auto* column : {&originX, &originY, &originZ, &directionX, &directionY, &directionZ}) {
-    column->reserve(count);
-  }
+  count_ = count;
 }
 
 void SegmentBatch::push(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
-  originX.push_back(float(origin.x()));
-  originY.push_back(float(origin.y()));
-  originZ.push_back(float(origin.z()));
-  directionX.push_back(float(direction.x()));
-  directionY.push_back(float(direction.y()));
-  directionZ.push_back(float(direction.z()));
+  const std::size_t k = count_;
+  resize(k + 1);
+  set(k, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(), direction.z());
+}
+
+void SegmentBatch::assign(std::size_t count, const float* originX, const float* originY,
+                          const float* originZ, const float* directionX, const float* directionY,
+                          const float* directionZ) {
+  resize(count);
+  for (std::size_t p = 0; p < packetCount(); ++p) {
+    const std::size_t start = p * 16;
+    const std::size_t lanes = std::min<std::size_t>(16, count - start);
+    RTCRay16& packet = packets_[p];
+    std::copy_n(originX + start, lanes, packet.org_x);
+    std::copy_n(originY + start, lanes, packet.org_y);
+    std::copy_n(originZ + start, lanes, packet.org_z);
+    std::copy_n(directionX + start, lanes, packet.dir_x);
+    std::copy_n(directionY + start, lanes, packet.dir_y);
+    std::copy_n(directionZ + start, lanes, packet.dir_z);
+    std::fill_n(packet.tfar, 16, 1.0f - kSegmentEpsilon);
+  }
+}
+
+void SegmentBatch::farEnds(float* far) const {
+  for (std::size_t p = 0; p < packetCount(); ++p) {
+    const std::size_t start = p * 16;
+    std::copy_n(packets_[p].tfar, std::min<std::size_t>(16, count_ - start), far + start);
+  }
 }
 
 OccluderScene::OccluderScene() {
@@ -100,8 +129,9 @@ unsigned OccluderScene::addTriangleMesh(
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     for (int axis = 0; axis < 3; ++axis) vertexBuffer[3 * v + axis] = float(vertices[v][axis]);
   }
-  auto* indexBuffer = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
+  auto* indexBuffer = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), triangles.size()));
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     for (int corner = 0; corner < 3; ++corner) indexBuffer[3 * t + corner] = triangles[t][corner];
   }
@@ -118,43 +148,30 @@ void OccluderScene::commit() {
   committed_ = true;
 }
 
-void OccluderScene::testSegments(const SegmentBatch& segments, std::uint8_t* visible) const {
+void OccluderScene::trace(SegmentBatch& segments) const {
   assert(committed_ || empty());
-  const std::size_t count = segments.size();
-  if (empty()) {
-    std::fill(visible, visible + count, std::uint8_t{1});
-    return;
-  }
+  if (empty()) return;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(64) RTCRay16 packet;
-  alignas(64) int valid[16];
-  for (std::size_t start = 0; start < count; start += 16) {
-    const std::size_t lanes = std::min<std::size_t>(16, count - start);
-    for (std::size_t lane = 0; lane < 16; ++lane) {
-      const bool active = lane < lanes;
-      valid[lane] = active ? -1 : 0;
-      const std::size_t k = active ? start + lane : start;
-      packet.org_x[lane] = segments.originX[k];
-      packet.org_y[lane] = segments.originY[k];
-      packet.org_z[lane] = segments.originZ[k];
-      packet.dir_x[lane] = segments.directionX[k];
-      packet.dir_y[lane] = segments.directionY[k];
-      packet.dir_z[lane] = segments.directionZ[k];
-      packet.tnear[lane] = kSegmentEpsilon;
-      packet.tfar[lane] = 1.0f - kSegmentEpsilon;
-      packet.time[lane] = 0.0f;
-      packet.mask[lane] = 0xFFFFFFFFu;
-      packet.id[lane] = 0;
-      packet.flags[lane] = 0;
-    }
-    rtcOccluded16(valid, scene_, &context, &packet);
-    // Embree sets tfar to -inf for every occluded ray.
-    for (std::size_t lane = 0; lane < lanes; ++lane) {
-      visible[start + lane] = packet.tfar[lane] >= 0.0f ? 1 : 0;
-    }
+  // Embree reads the valid mask with aligned loads.
+  alignas(64) static constexpr int kAllLanes[16] = {-1, -1, -1, -1, -1, -1, -1, -1,
+                                                    -1, -1, -1, -1, -1, -1, -1, -1};
+  const std::size_t count = segments.size();
+  const std::size_t full = count / 16;
+  RTCRay16* packets = segments.packets();
+  for (std::size_t p = 0; p < full; ++p) rtcOccluded16(kAllLanes, scene_, &context, &packets[p]);
+  if (count % 16 != 0) {
+    alignas(64) int valid[16];
+    for (std::size_t lane = 0; lane < 16; ++lane) valid[lane] = lane < count % 16 ? -1 : 0;
+    rtcOccluded16(valid, scene_, &context, &packets[full]);
   }
+}
+
+void OccluderScene::testSegments(const SegmentBatch& segments, std::uint8_t* visible) const {
+  SegmentBatch traced = segments;
+  trace(traced);
+  for (std::size_t k = 0; k < traced.size(); ++k) visible[k] = traced.visible(k) ? 1 : 0;
 }
 
 bool OccluderScene::segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {

@@ -21,15 +21,42 @@ namespace radquad {
 // Segments are tested for t in [kSegmentEpsilon, 1 - kSegmentEpsilon] of origin + t direction.
 inline constexpr float kSegmentEpsilon = 1e-5f;
 
-// A batch of segments in structure-of-arrays form (single precision, as Embree traces).
-struct SegmentBatch {
-  std::vector<float> originX, originY, originZ;
-  std::vector<float> directionX, directionY, directionZ;
-
-  std::size_t size() const { return originX.size(); }
-  void clear();
-  void reserve(std::size_t count);
+// A batch of segments stored directly as Embree 16-wide ray packets, so they are traced in
+// place with no copy: segment k lives in lane k % 16 of packet k / 16.
+class SegmentBatch {
+ public:
+  std::size_t size() const { return count_; }
+  void clear() { count_ = 0; }
+  // Grows or shrinks to `count` segments; the contents of new segments are unspecified.
+  void resize(std::size_t count);
   void push(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction);
+  void set(std::size_t k, double ox, double oy, double oz, double dx, double dy, double dz) {
+    RTCRay16& packet = packets_[k >> 4];
+    const std::size_t lane = k & 15;
+    packet.org_x[lane] = float(ox);
+    packet.org_y[lane] = float(oy);
+    packet.org_z[lane] = float(oz);
+    packet.dir_x[lane] = float(dx);
+    packet.dir_y[lane] = float(dy);
+    packet.dir_z[lane] = float(dz);
+    packet.tfar[lane] = 1.0f - kSegmentEpsilon;  // Embree sets it to -inf when blocked
+  }
+  // Sets segments 0..count-1 from structure-of-arrays columns, 16 lanes at a time.
+  void assign(std::size_t count, const float* originX, const float* originY, const float* originZ,
+              const float* directionX, const float* directionY, const float* directionZ);
+  // After OccluderScene::trace: writes each segment's far end to far[k]; negative when the
+  // segment was blocked.
+  void farEnds(float* far) const;
+  // After OccluderScene::trace: whether segment k was unobstructed.
+  bool visible(std::size_t k) const { return packets_[k >> 4].tfar[k & 15] >= 0.0f; }
+
+  std::size_t packetCount() const { return (count_ + 15) / 16; }
+  RTCRay16* packets() { return packets_.data(); }
+  const RTCRay16& packet(std::size_t p) const { return packets_[p]; }
+
+ private:
+  std::vector<RTCRay16> packets_;
+  std::size_t count_ = 0;
 };
 
 class OccluderScene {
@@ -53,8 +80,10 @@ class OccluderScene {
   std::size_t primitiveCount() const { return primitiveCount_; }
   RTCScene handle() const { return scene_; }
 
-  // For each segment k, writes 1 to visible[k] when nothing blocks it, else 0.
-  // Traced in packets of 16 with rtcOccluded16. Thread-safe after commit().
+  // Traces every segment of the batch in place (rtcOccluded16 on its packets); afterwards
+  // segments.visible(k) tells whether segment k is unobstructed. Thread-safe after commit().
+  void trace(SegmentBatch& segments) const;
+  // The same, writing 1 (unobstructed) or 0 (blocked) to visible[k].
   void testSegments(const SegmentBatch& segments, std::uint8_t* visible) const;
   bool segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
 

@@ -8,7 +8,9 @@
 namespace radquad {
 namespace {
 
-bool allFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
+bool allFinite(const Eigen::Vector3d& v) {
+  return v.allFinite();
+}
 
 std::string formatVector(const Eigen::Vector3d& v) {
   std::ostringstream out;
@@ -42,8 +44,8 @@ Patch Patch::make(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
 }
 
 std::string Patch::toString() const {
-  return "Patch{origin " + formatVector(origin) + ", edge_u " + formatVector(edgeU) +
-         ", edge_v " + formatVector(edgeV) + "}";
+  return "Patch{origin " + formatVector(origin) + ", edge_u " + formatVector(edgeU) + ", edge_v " +
+         formatVector(edgeV) + "}";
 }
 
 }  // namespace radquad

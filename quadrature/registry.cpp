@@ -4,6 +4,10 @@
 
 #include "kernel/input_error.h"
 #include "quadrature/rules/gauss_product.h"
+#include "quadrature/rules/monte_carlo.h"
+#include "quadrature/rules/n_rook.h"
+#include "quadrature/rules/stratified.h"
+#include "quadrature/rules/stroud.h"
 
 namespace radquad {
 namespace {
@@ -22,9 +26,24 @@ struct ParametrisedFamily {
 // The catalogue of DESIGN.md, "The paper's rules".
 const std::vector<NamedRule>& namedCatalogue() {
   static const std::vector<NamedRule> catalogue = {
-      {"FullGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 3, 3}, "FullGauss"); }},
-      {"LinSrcGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 2, 2}, "LinSrcGauss"); }},
-      {"ConstSrcGauss", [] { return std::make_shared<GaussProductRule>(std::array{3, 3, 1, 1}, "ConstSrcGauss"); }},
+      {"FullGauss",
+       [] {
+         return std::make_shared<GaussProductRule>(std::array{3, 3, 3, 3}, "FullGauss");
+       }},
+      {"LinSrcGauss",
+       [] {
+         return std::make_shared<GaussProductRule>(std::array{3, 3, 2, 2}, "LinSrcGauss");
+       }},
+      {"ConstSrcGauss",
+       [] {
+         return std::make_shared<GaussProductRule>(std::array{3, 3, 1, 1}, "ConstSrcGauss");
+       }},
+      {"Stroud65", [] { return StroudRule::cn57(); }},
+      {"HierStroud", [] { return StroudRule::hierarchicalCn31(); }},
+      {"MonteCarlo", [] { return std::make_shared<MonteCarloRule>(81, "MonteCarlo"); }},
+      {"NRook", [] { return std::make_shared<NRookRule>(81, "NRook"); }},
+      {"Stratified", [] { return std::make_shared<StratifiedRule>(3, "Stratified"); }},
+      {"Reference", [] { return std::make_shared<StratifiedRule>(10, "Reference"); }},
   };
   return catalogue;
 }
@@ -32,13 +51,17 @@ const std::vector<NamedRule>& namedCatalogue() {
 const std::vector<ParametrisedFamily>& parametrisedCatalogue() {
   static const std::vector<ParametrisedFamily> catalogue = {
       {"Gauss", "Gauss:RsxRtxSuxSv", makeGaussProductRule},
+      {"MonteCarlo", "MonteCarlo:n", makeMonteCarloRule},
+      {"NRook", "NRook:n", makeNRookRule},
+      {"Stratified", "Stratified:k", makeStratifiedRule},
   };
   return catalogue;
 }
 
 std::string validNames() {
   std::string text;
-  for (const auto& rule : namedCatalogue()) text += std::string(text.empty() ? "" : ", ") + rule.name;
+  for (const auto& rule : namedCatalogue())
+    text += std::string(text.empty() ? "" : ", ") + rule.name;
   for (const auto& family : parametrisedCatalogue()) text += std::string(", ") + family.form;
   return text;
 }

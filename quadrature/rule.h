@@ -46,6 +46,8 @@ class Rule {
   // The points for one trial. Random rules must give the same points for the same seed on
   // every machine and thread count.
   virtual RuleSamples samples(std::uint64_t seed) const = 0;
+  // The same points written into `out`, reusing its storage (the hot path of random rules).
+  virtual void drawSamples(std::uint64_t seed, RuleSamples& out) const { out = samples(seed); }
 
   std::string toString() const;
 };

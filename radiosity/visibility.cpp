@@ -130,7 +130,6 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
   // Rays between stratum centres of the two elements, where the kernel is positive.
   SegmentBatch segments;
   constexpr int n = kGridPoints;
-  segments.reserve(n * n * n * n);
   for (int i = 0; i < n * n; ++i) {
     const Vec x = receiver.pointAt((i / n + 0.5) / n, (i % n + 0.5) / n);
     for (int j = 0; j < n * n; ++j) {

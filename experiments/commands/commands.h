@@ -7,6 +7,7 @@
 namespace radquad {
 
 void addLinkCommand(CLI::App& app);
+void addReferenceCommand(CLI::App& app);
 void addRulesCommand(CLI::App& app);
 void addSolveCommand(CLI::App& app);
 

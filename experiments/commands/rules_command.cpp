@@ -26,7 +26,8 @@ void runRules(bool asJson) {
     return;
   }
   std::cout << std::left << std::setw(16) << "name" << std::setw(9) << "samples" << std::setw(8)
-            << "degree" << "family\n";
+            << "degree"
+            << "family\n";
   for (const auto& rule : rules) {
     const auto degree = rule->degree();
     std::cout << std::setw(16) << rule->name() << std::setw(9) << rule->sampleCount()

@@ -33,8 +33,8 @@ GaussProductRule::GaussProductRule(std::array<int, 4> pointsPerAxis, std::string
       name_(name.empty() ? gaussProductName(pointsPerAxis) : std::move(name)) {
   for (int n : pointsPerAxis_) {
     if (n < 1 || n > kMaxGaussPoints) {
-      throw InputError("rule " + name_ + ": each axis needs 1.." +
-                       std::to_string(kMaxGaussPoints) + " points");
+      throw InputError("rule " + name_ + ": each axis needs 1.." + std::to_string(kMaxGaussPoints) +
+                       " points");
     }
   }
   samples_.isProduct = true;
@@ -57,7 +57,9 @@ std::string GaussProductRule::citation() const {
          "Gershbein 1995, section 3";
 }
 
-RuleSamples GaussProductRule::samples(std::uint64_t) const { return samples_; }
+RuleSamples GaussProductRule::samples(std::uint64_t) const {
+  return samples_;
+}
 
 std::shared_ptr<const Rule> makeGaussProductRule(const std::string& parameter) {
   std::array<int, 4> counts{};

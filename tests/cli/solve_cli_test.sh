@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # `radquad solve` through the real binary: bad scenes exit with status 2 and a message that
 # names the patch; a good scene exits 0 with the documented JSON fields.
-# Usage: solve_cli_test.sh PATH/TO/radquad
+# Usage: RADQUAD=PATH/TO/radquad solve_cli_test.sh (or the path as the first argument)
 set -u
-radquad="$1"
+radquad="${RADQUAD:-${1:-}}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 failures=0

@@ -1,0 +1,120 @@
+// `radquad reference LINK.json [--degree D] [--seed S] [--replicates R] [--gold]`: the paper's
+// 10,000-sample stratified reference of one link with its standard error, and optionally a
+// gold reference to measure how far it is off; prints one JSON object on stdout.
+//
+// Output keys: options echoed (link, degree, seed, replicates), `form_factor`, `coupling`,
+// `standard_error` = {`form_factor`, `coupling`} (reference/stratified_reference.h says how
+// it is estimated), `kernel_evaluations`, `visible_fraction`; with --gold, `gold` =
+// {method, form_factor, coupling, error = {form_factor, coupling}, converged, gauss_points,
+// kernel_evaluations, lambert_check} and `reference_minus_gold` = {form_factor,
+// max_abs_coupling, form_factor_in_standard_errors}.
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "experiments/commands/commands.h"
+#include "experiments/json_input.h"
+#include "reference/gold_reference.h"
+#include "reference/stratified_reference.h"
+
+namespace radquad {
+namespace {
+
+struct ReferenceCommandOptions {
+  std::string linkPath;
+  int degree = 0;
+  std::uint64_t seed = 0;
+  int replicates = ReferenceOptions{}.replicates;
+  bool gold = false;
+};
+
+nlohmann::json goldToJson(const GoldReference& gold) {
+  nlohmann::json out = {
+      {"method", gold.method},
+      {"form_factor", gold.formFactor},
+      {"coupling", matrixToJson(gold.coupling)},
+      {"error",
+       {{"kind", gold.method == "gauss product" ? "difference of the last two Gauss orders"
+                                                : "standard error of the mean"},
+        {"form_factor", gold.formFactorError},
+        {"coupling", matrixToJson(gold.couplingError)}}},
+      {"converged", gold.converged},
+      {"kernel_evaluations", gold.kernelEvaluations},
+      {"tolerance", GoldOptions{}.tolerance},
+  };
+  if (gold.method == "gauss product") out["gauss_points"] = gold.gaussPoints;
+  if (gold.lambert) {
+    const LambertCheck& check = *gold.lambert;
+    nlohmann::json column = nlohmann::json::array();
+    for (Eigen::Index a = 0; a < check.column.size(); ++a) column.push_back(check.column[a]);
+    out["lambert_check"] = {{"source_function", 0},
+                            {"coupling_column", column},
+                            {"max_abs_difference_from_gold", check.maxDifference},
+                            {"outer_gauss_points", check.outerPoints},
+                            {"outer_error", check.error},
+                            {"converged", check.converged}};
+  }
+  return out;
+}
+
+void runReference(const ReferenceCommandOptions& options) {
+  const LinkDescription description = readLinkFile(options.linkPath);
+  const SceneLink sceneLink = buildSceneLink(description);
+  ReferenceOptions referenceOptions;
+  referenceOptions.replicates = options.replicates;
+  const ReferenceEstimate estimate =
+      stratifiedReference(sceneLink.link, options.degree, options.seed, referenceOptions);
+  nlohmann::json out = {
+      {"link", options.linkPath},
+      {"rule", "Reference"},
+      {"samples", estimate.integral.kernelEvaluations},
+      {"degree", options.degree},
+      {"seed", options.seed},
+      {"replicates", estimate.replicates},
+      {"form_factor", estimate.integral.formFactor},
+      {"coupling", matrixToJson(estimate.integral.coupling)},
+      {"standard_error",
+       {{"method", "sample standard deviation of independent replicates"},
+        {"form_factor", estimate.formFactorStandardError},
+        {"coupling", matrixToJson(estimate.couplingStandardError)}}},
+      {"kernel_evaluations", estimate.totalKernelEvaluations},
+      {"visible_fraction", estimate.integral.visibleFraction()},
+  };
+  if (options.gold) {
+    const GoldReference gold = goldReference(sceneLink.link, options.degree, options.seed);
+    out["gold"] = goldToJson(gold);
+    const double difference = estimate.integral.formFactor - gold.formFactor;
+    out["reference_minus_gold"] = {
+        {"form_factor", difference},
+        {"max_abs_coupling", (estimate.integral.coupling - gold.coupling).cwiseAbs().maxCoeff()},
+        {"form_factor_in_standard_errors", estimate.formFactorStandardError > 0.0
+                                               ? difference / estimate.formFactorStandardError
+                                               : 0.0}};
+  }
+  std::cout << out.dump(2) << "\n";
+}
+
+}  // namespace
+
+void addReferenceCommand(CLI::App& app) {
+  auto options = std::make_shared<ReferenceCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "reference",
+      "The paper's 10,000-sample stratified reference of one link with its standard error "
+      "(and, with --gold, a gold reference); prints JSON on stdout");
+  command
+      ->add_option("link", options->linkPath,
+                   "LINK.json: {\"receiver\": PATCH, \"source\": PATCH, \"occluders\": [PATCH...]}")
+      ->required();
+  command->add_option("--degree", options->degree, "Basis degree d, 0..8")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of the reference draw")->capture_default_str();
+  command
+      ->add_option("--replicates", options->replicates,
+                   "Independent draws for the standard error (2..100000)")
+      ->capture_default_str();
+  command->add_flag("--gold", options->gold,
+                    "Also compute a gold reference (Gauss of rising order or dense stratified)");
+  command->callback([options] { runReference(*options); });
+}
+
+}  // namespace radquad

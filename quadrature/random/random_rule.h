@@ -1,0 +1,42 @@
+// What the random rules (MonteCarlo, NRook, Stratified) share: no declared degree, a seed,
+// equal weights 1/N, and the parsing of their parameter. Their points come from Philox
+// blocks keyed by the seed (quadrature/random/philox.h), so a seed gives the same points on
+// every machine and thread count.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "quadrature/rule.h"
+
+namespace radquad {
+
+// Philox stream numbers: each rule family draws from its own streams.
+enum class RandomStream : std::uint32_t {
+  kMonteCarlo = 1,
+  kNRookJitter = 2,
+  kNRookPermutation = 3,
+  kStratified = 4,
+};
+
+class RandomPointRule : public Rule {
+ public:
+  std::optional<int> degree() const override { return std::nullopt; }
+  bool isRandom() const override { return true; }
+  RuleSamples samples(std::uint64_t seed) const override {
+    RuleSamples drawn;
+    drawSamples(seed, drawn);
+    return drawn;
+  }
+  void drawSamples(std::uint64_t seed, RuleSamples& out) const override = 0;
+};
+
+// Resizes `out` to a 4D point set of `count` points of weight 1/count.
+void resizeEqualWeights(std::size_t count, RuleSamples& out);
+
+// Parses the integer after the colon of a parametrised name (e.g. "81" of "NRook:81");
+// InputError names the rule and the allowed range.
+int parseRuleParameter(const std::string& family, const std::string& parameter, int minimum,
+                       int maximum, const char* meaning);
+
+}  // namespace radquad

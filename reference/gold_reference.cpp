@@ -1,0 +1,113 @@
+#include "reference/gold_reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "kernel/legendre_basis.h"
+#include "quadrature/gauss_legendre.h"
+#include "quadrature/prepared_rule.h"
+#include "quadrature/rules/gauss_product.h"
+#include "reference/point_polygon_form_factor.h"
+#include "reference/stratified_reference.h"
+
+namespace radquad {
+namespace {
+
+constexpr int kGaussOrders[] = {4, 8, 12, 16, 24, 32, 48};
+// Seed indices of the dense draws, apart from the reference's replicates 0, 1, ...
+constexpr std::uint32_t kDenseSeedIndex = 1u << 20;
+
+double maxAbs(const Eigen::MatrixXd& matrix) {
+  return matrix.cwiseAbs().maxCoeff();
+}
+
+// The Gauss sequence; returns false if a ray was blocked (the link is occluded).
+bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& gold) {
+  LinkIntegral previous;
+  CouplingAccumulator accumulator;
+  bool havePrevious = false;
+  for (int n : kGaussOrders) {
+    const PreparedRule prepared(std::make_shared<GaussProductRule>(std::array{n, n, n, n}), degree);
+    LinkIntegral current;
+    prepared.integrate(link, 0, accumulator, current);
+    gold.kernelEvaluations += current.kernelEvaluations;
+    if (current.raysBlocked > 0) return false;
+    if (havePrevious) {
+      gold.coupling = current.coupling;
+      gold.formFactor = current.formFactor;
+      gold.couplingError = (current.coupling - previous.coupling).cwiseAbs();
+      gold.formFactorError = std::fabs(current.formFactor - previous.formFactor);
+      gold.gaussPoints = n;
+      gold.converged = maxAbs(gold.couplingError) <= tolerance * maxAbs(current.coupling);
+      if (gold.converged) return true;
+    }
+    previous = current;
+    havePrevious = true;
+  }
+  return true;
+}
+
+Eigen::VectorXd lambertColumnAtOrder(const Link& link, int degree, int n) {
+  const GaussLegendreRule& rule = gaussLegendreUnit(n);
+  const int functions = basisFunctionCount(degree);
+  Eigen::VectorXd column = Eigen::VectorXd::Zero(functions);
+  double values[basisFunctionCount(kMaxBasisDegree)];
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double s = rule.nodes[i], t = rule.nodes[j];
+      const double inner =
+          pointToPatchFormFactor(link.receiver.pointAt(s, t), link.receiver.normal, link.source);
+      tensorBasisValues(degree, s, t, values);
+      const double w = rule.weights[i] * rule.weights[j] * inner;
+      for (int a = 0; a < functions; ++a) column[a] += w * values[a];
+    }
+  }
+  // K[a][0] = int M_a(x) F(x) / sqrt(A_s) dA = sqrt(A_r / A_s) int phi_a F ds dt.
+  return column * std::sqrt(link.receiver.area / link.source.area);
+}
+
+}  // namespace
+
+LambertCheck lambertColumn(const Link& link, int degree, double tolerance) {
+  LambertCheck check;
+  Eigen::VectorXd previous;
+  for (int n : {4, 8, 16, 32, 64}) {
+    Eigen::VectorXd current = lambertColumnAtOrder(link, degree, n);
+    if (previous.size() > 0) {
+      check.column = current;
+      check.outerPoints = n;
+      check.error = (current - previous).cwiseAbs().maxCoeff();
+      check.converged = check.error <= tolerance * current.cwiseAbs().maxCoeff();
+      if (check.converged) break;
+    }
+    previous = std::move(current);
+  }
+  return check;
+}
+
+GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
+                            const GoldOptions& options) {
+  validateBasisDegree(degree);
+  GoldReference gold;
+  if (gaussGold(link, degree, options.tolerance, gold)) {
+    gold.method = "gauss product";
+    LambertCheck check = lambertColumn(link, degree, options.tolerance);
+    check.maxDifference = (check.column - gold.coupling.col(0)).cwiseAbs().maxCoeff();
+    gold.lambert = std::move(check);
+    return gold;
+  }
+  gold = GoldReference{};
+  gold.method = "dense stratified";
+  const ReplicateMean mean = stratifiedReplicateMean(link, degree, seed, options.denseStrata,
+                                                     options.denseReplicates, kDenseSeedIndex);
+  gold.coupling = mean.coupling;
+  gold.formFactor = mean.formFactor;
+  gold.couplingError = mean.couplingStandardError;
+  gold.formFactorError = mean.formFactorStandardError;
+  gold.converged = true;
+  gold.kernelEvaluations = mean.kernelEvaluations;
+  return gold;
+}
+
+}  // namespace radquad

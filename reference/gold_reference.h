@@ -1,0 +1,67 @@
+// Gold references: much more accurate than the paper's reference, to measure how far the
+// paper's 10,000-sample reference itself is off (DESIGN.md, "The study").
+//
+// - Unoccluded links (no occluders, or none of the Gauss rays blocked): the Gauss-Legendre
+//   product with n points on every axis for n = 4, 8, 12, 16, 24, 32, 48, until two successive
+//   orders agree to `tolerance` times the largest |K| entry; the error reported is the
+//   entrywise difference of the last two orders (a bound on the coarser one, so
+//   conservative for the finer one returned).
+// - Occluded links: the mean of `denseReplicates` independent draws of Stratified:k with
+//   k = `denseStrata` (default 16 x 24^4 = 5.3 million samples, 530 times the reference),
+//   with the standard error of that mean.
+// - Constant source functions on unoccluded links: an independent check of column b = 0,
+//   K[a][0] = sqrt(A_r/A_s) int_{[0,1]^2} phi_a(s,t) F(x(s,t) -> source) ds dt, with the
+//   inner integral by Lambert's contour formula (point_polygon_form_factor.h) and the outer
+//   one by Gauss products of rising order.
+//
+// Options (GoldOptions):
+// | field           | default | meaning                                                    |
+// |-----------------|---------|------------------------------------------------------------|
+// | tolerance       | 1e-9    | agreement of two Gauss orders, relative to max |K|         |
+// | denseStrata     | 24      | k of the dense Stratified:k for occluded links             |
+// | denseReplicates | 16      | independent dense draws averaged                           |
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "kernel/coupling.h"
+
+namespace radquad {
+
+struct GoldOptions {
+  double tolerance = 1e-9;
+  int denseStrata = 24;
+  int denseReplicates = 16;
+};
+
+struct LambertCheck {
+  Eigen::VectorXd column;      // K[a][0] from the contour formula
+  double maxDifference = 0.0;  // max_a |column[a] - gold K[a][0]|
+  double error = 0.0;          // difference of the last two outer Gauss orders
+  int outerPoints = 0;         // per axis on the receiver
+  bool converged = false;
+};
+
+struct GoldReference {
+  std::string method;  // "gauss product" or "dense stratified"
+  Eigen::MatrixXd coupling;
+  double formFactor = 0.0;
+  // Gauss: |K_n - K_previous| entrywise; dense stratified: the standard error of the mean.
+  Eigen::MatrixXd couplingError;
+  double formFactorError = 0.0;
+  bool converged = false;  // Gauss orders agreed (always true for dense stratified)
+  int gaussPoints = 0;     // per axis, Gauss only
+  std::uint64_t kernelEvaluations = 0;
+  std::optional<LambertCheck> lambert;
+};
+
+GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
+                            const GoldOptions& options = {});
+
+// The Lambert check alone (unoccluded links; ignores occluders).
+LambertCheck lambertColumn(const Link& link, int degree, double tolerance);
+
+}  // namespace radquad

@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# Command-line behaviour of the real `radquad` binary: good runs print the documented JSON,
+# bad input prints a message naming the input on stderr and exits with status 2.
+# Usage: RADQUAD=path/to/radquad cli_test.sh FIXTURE_DIR
+set -u
+fixtures="$1"
+radquad="${RADQUAD:?set RADQUAD to the radquad binary}"
+python=/usr/bin/python3
+passed=0
+failed=0
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+check() {  # check NAME CONDITION_STATUS
+  if [ "$2" -eq 0 ]; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAILED: $1"; fi
+}
+
+# expect_error NAME FRAGMENT ARGS... : exit status 2 and FRAGMENT on stderr.
+expect_error() {
+  local name="$1" fragment="$2"
+  shift 2
+  "$radquad" "$@" >"$scratch/out" 2>"$scratch/err"
+  local status=$?
+  if [ "$status" -ne 2 ]; then
+    echo "$name: exit status $status, expected 2"; check "$name" 1; return
+  fi
+  if ! grep -qF -- "$fragment" "$scratch/err"; then
+    echo "$name: stderr lacks '$fragment':"; cat "$scratch/err"; check "$name" 1; return
+  fi
+  if [ -s "$scratch/out" ]; then
+    echo "$name: printed on stdout despite the error"; check "$name" 1; return
+  fi
+  check "$name" 0
+}
+
+expect_error malformed_json "malformed.json: malformed JSON" link "$fixtures/malformed.json" --rule FullGauss
+expect_error unknown_key "unknown key 'normal'" link "$fixtures/unknown_key.json" --rule FullGauss
+expect_error wrong_length "receiver.origin: expected an array of 3 numbers" link "$fixtures/wrong_length.json" --rule FullGauss
+expect_error non_finite "non_finite.json: non-finite number" link "$fixtures/non_finite.json" --rule FullGauss
+expect_error zero_area "source: degenerate patch" link "$fixtures/zero_area.json" --rule FullGauss
+expect_error missing_key "missing key 'source'" link "$fixtures/missing_source.json" --rule FullGauss
+expect_error bad_occluder "occluders[1]: degenerate patch" link "$fixtures/bad_occluders.json" --rule FullGauss
+expect_error missing_file "no_such_file.json: cannot open" link "$fixtures/no_such_file.json" --rule FullGauss
+expect_error unknown_rule "unknown rule 'NoSuchRule'; valid rules: FullGauss" link "$fixtures/good_link.json" --rule NoSuchRule
+expect_error bad_gauss_form "expected Gauss:RsxRtxSuxSv" link "$fixtures/good_link.json" --rule Gauss:3x3
+expect_error bad_degree "basis degree 9 is out of range" link "$fixtures/good_link.json" --rule FullGauss --degree 9
+expect_error missing_rule "--rule is required" link "$fixtures/good_link.json"
+expect_error unknown_option "--bogus" link "$fixtures/good_link.json" --rule FullGauss --bogus
+expect_error no_command "subcommand" 
+
+# A good run: the documented keys, a 9x9 coupling at degree 2, half the rays blocked (the
+# fixture's blocker covers half of the mid plane; Gauss:4x4x3x3 is symmetric about it).
+"$radquad" link "$fixtures/good_link.json" --rule Gauss:4x4x3x3 --degree 2 >"$scratch/good.json" 2>"$scratch/err"
+check good_run_status $?
+"$python" - "$scratch/good.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+for key in ("rule", "samples", "degree", "kernel_evaluations", "form_factor", "coupling", "visible_fraction"):
+    assert key in out, key
+assert out["rule"] == "Gauss:4x4x3x3" and out["samples"] == 144 and out["degree"] == 2
+assert out["kernel_evaluations"] == 144
+assert len(out["coupling"]) == 9 and all(len(row) == 9 for row in out["coupling"])
+assert out["visible_fraction"] == 0.5, out["visible_fraction"]
+assert abs(out["coupling"][0][0] - out["form_factor"]) < 1e-15  # unit squares: K00 = F
+PY
+check good_run_json $?
+
+"$radquad" rules --json >"$scratch/rules.json"
+check rules_status $?
+"$python" - "$scratch/rules.json" <<'PY'
+import json, sys
+rules = json.load(open(sys.argv[1]))
+names = {r["name"]: r for r in rules}
+for name, samples in (("FullGauss", 81), ("LinSrcGauss", 36), ("ConstSrcGauss", 9)):
+    assert names[name]["samples"] == samples, name
+for r in rules:
+    assert set(r) >= {"name", "samples", "degree", "family", "citation"}, r
+PY
+check rules_json $?
+
+# Trials of a random rule: T runs with seeds S..S+T-1, their mean and standard deviation.
+"$radquad" link "$fixtures/good_link.json" --rule Stratified --trials 40 --seed 5 >"$scratch/trials.json"
+check trials_status $?
+"$python" - "$scratch/trials.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+assert out["trials"] == 40 and out["seeds"] == [5, 44], out["seeds"]
+sd = out["standard_deviation"]["coupling"][0][0]
+# Half of Howell's 0.1998249 gets through the fixture's symmetric half blocker; the mean of 40
+# trials lies within 4 standard errors of it.
+assert abs(out["mean_coupling"][0][0] - 0.1998249 / 2) < 4 * sd / 40 ** 0.5, out["mean_coupling"]
+PY
+check trials_json $?
+expect_error zero_trials "--trials 0: expected at least 1" link "$fixtures/good_link.json" --rule Stratified --trials 0
+
+# The reference with its standard error.
+"$radquad" reference "$fixtures/good_link.json" --degree 1 --seed 2 >"$scratch/reference.json"
+check reference_status $?
+"$python" - "$scratch/reference.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+assert out["samples"] == 10000
+k, se = out["coupling"], out["standard_error"]["coupling"]
+assert len(k) == 4 and len(se) == 4 and all(len(row) == 4 for row in se)
+assert 0 < out["standard_error"]["form_factor"] < 0.01 * out["form_factor"]
+assert abs(out["form_factor"] - 0.1998249 / 2) < 5 * out["standard_error"]["form_factor"]
+PY
+check reference_json $?
+expect_error reference_bad_file "malformed.json: malformed JSON" reference "$fixtures/malformed.json"
+
+for command in "" link rules reference; do
+  "$radquad" $command --help >/dev/null 2>&1
+  check "help_$command" $?
+done
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,143 @@
+// The random rules: their stratification, their reproducibility and their unbiasedness.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "quadrature/prepared_rule.h"
+#include "quadrature/registry.h"
+#include "tests/support/analytic_form_factors.h"
+
+namespace radquad {
+namespace {
+
+// Unit squares facing each other at distance 1 (receiver at z = 0 facing +z).
+Link parallelSquares() {
+  return Link{Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver"),
+              Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source"), nullptr};
+}
+
+TEST(NRook, EveryStratumOfEveryAxisHoldsExactlyOnePoint) {
+  for (const std::string name : {"NRook", "NRook:1000", "NRook:1"}) {
+    const auto rule = findRule(name);
+    const std::size_t n = rule->sampleCount();
+    for (std::uint64_t seed : {0ull, 1ull, 987654321ull}) {
+      const LinkSamples p = rule->samples(seed).points;
+      ASSERT_EQ(p.size(), n);
+      for (const std::vector<double>* axis : {&p.s, &p.t, &p.u, &p.v}) {
+        std::vector<int> hits(n, 0);
+        for (double x : *axis) {
+          ASSERT_GE(x, 0.0);
+          ASSERT_LT(x, 1.0);
+          ++hits[std::size_t(x * double(n))];
+        }
+        for (std::size_t stratum = 0; stratum < n; ++stratum) {
+          ASSERT_EQ(hits[stratum], 1) << name << " seed " << seed << " stratum " << stratum;
+        }
+      }
+    }
+  }
+}
+
+TEST(Stratified, EveryCellHoldsExactlyOnePoint) {
+  for (const auto& [name, k] :
+       {std::pair{"Stratified", 3}, {"Reference", 10}, {"Stratified:5", 5}}) {
+    const auto rule = findRule(name);
+    ASSERT_EQ(rule->sampleCount(), std::size_t(k * k * k * k));
+    for (std::uint64_t seed : {0ull, 42ull}) {
+      const LinkSamples p = rule->samples(seed).points;
+      std::vector<int> hits(rule->sampleCount(), 0);
+      for (std::size_t q = 0; q < p.size(); ++q) {
+        int cell = 0;
+        for (double x : {p.s[q], p.t[q], p.u[q], p.v[q]}) {
+          ASSERT_GE(x, 0.0);
+          ASSERT_LT(x, 1.0);
+          cell = cell * k + int(x * k);
+        }
+        ++hits[std::size_t(cell)];
+      }
+      for (std::size_t cell = 0; cell < hits.size(); ++cell) {
+        ASSERT_EQ(hits[cell], 1) << name << " seed " << seed << " cell " << cell;
+      }
+    }
+  }
+}
+
+std::vector<std::string> randomRuleNames() {
+  std::vector<std::string> names;
+  for (const auto& rule : namedRules()) {
+    if (rule->isRandom()) names.push_back(rule->name());
+  }
+  return names;
+}
+
+TEST(RandomRules, SameSeedSamePointsOnEveryThreadAndDifferentSeedsDiffer) {
+  const auto names = randomRuleNames();
+  ASSERT_EQ(names.size(), 4u);  // MonteCarlo, NRook, Stratified, Reference
+  for (const std::string& name : names) {
+    const auto rule = findRule(name);
+    const LinkSamples first = rule->samples(17).points;
+    const LinkSamples again = rule->samples(17).points;
+    LinkSamples fromThread;
+    std::thread worker([&] { fromThread = rule->samples(17).points; });
+    worker.join();
+    const LinkSamples other = rule->samples(18).points;
+    EXPECT_EQ(first.s, again.s) << name;
+    EXPECT_EQ(first.v, again.v) << name;
+    EXPECT_EQ(first.s, fromThread.s) << name;
+    EXPECT_EQ(first.t, fromThread.t) << name;
+    EXPECT_EQ(first.u, fromThread.u) << name;
+    EXPECT_EQ(first.v, fromThread.v) << name;
+    EXPECT_NE(first.s, other.s) << name;
+    EXPECT_NE(first.u, other.u) << name;
+  }
+}
+
+// Mean over 400 seeds against the closed-form form factor of parallel squares (degree 0) and
+// against a high-order Gauss product (degree 2), within 4.5 standard errors of the mean.
+TEST(RandomRules, MeanOverSeedsAgreesWithGold) {
+  const Link link = parallelSquares();
+  const double exactFormFactor = analytic::parallelRectangles(1, 1, 1);
+  const LinkIntegral gold = PreparedRule(findRule("Gauss:12x12x12x12"), 2).integrate(link);
+  ASSERT_NEAR(gold.formFactor, exactFormFactor, 1e-9);
+  constexpr int kTrials = 400;
+  constexpr double kStandardErrors = 4.5;
+  for (const std::string name : {"MonteCarlo", "NRook", "Stratified", "MonteCarlo:20", "NRook:7"}) {
+    const PreparedRule prepared(findRule(name), 2);
+    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(9, 9), squares = sum;
+    for (int seed = 0; seed < kTrials; ++seed) {
+      const LinkIntegral draw = prepared.integrate(link, std::uint64_t(seed));
+      sum += draw.coupling;
+      squares += draw.coupling.cwiseAbs2();
+    }
+    const Eigen::MatrixXd mean = sum / kTrials;
+    const Eigen::MatrixXd standardError =
+        ((squares / kTrials - mean.cwiseAbs2()) * (kTrials / (kTrials - 1.0))).cwiseSqrt() /
+        std::sqrt(double(kTrials));
+    for (int a = 0; a < 9; ++a) {
+      for (int b = 0; b < 9; ++b) {
+        EXPECT_LT(std::fabs(mean(a, b) - gold.coupling(a, b)),
+                  kStandardErrors * standardError(a, b) + 1e-15)
+            << name << " K[" << a << "][" << b << "] mean " << mean(a, b) << " gold "
+            << gold.coupling(a, b) << " standard error " << standardError(a, b);
+      }
+    }
+    EXPECT_LT(std::fabs(mean(0, 0) - exactFormFactor), kStandardErrors * standardError(0, 0))
+        << name;
+  }
+}
+
+TEST(RandomRules, ParametrisedFormsRejectBadParameters) {
+  for (const char* bad : {"NRook:0", "NRook:x", "MonteCarlo:-3", "Stratified:57",
+                          "Stratified:", "MonteCarlo:12abc"}) {
+    EXPECT_ANY_THROW(findRule(bad)) << bad;
+  }
+  EXPECT_EQ(findRule("Stratified:4")->sampleCount(), 256u);
+  EXPECT_EQ(findRule("MonteCarlo:17")->sampleCount(), 17u);
+}
+
+}  // namespace
+}  // namespace radquad
