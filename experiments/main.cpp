@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   radquad::addRulesCommand(app);
   radquad::addStudyCommand(app);
   radquad::addFiguresCommand(app);
+  radquad::addSolveCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

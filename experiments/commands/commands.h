@@ -11,5 +11,6 @@ void addReferenceCommand(CLI::App& app);
 void addRulesCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addFiguresCommand(CLI::App& app);
+void addSolveCommand(CLI::App& app);
 
 }  // namespace radquad

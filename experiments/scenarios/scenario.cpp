@@ -239,8 +239,8 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
 
 }  // namespace
 
-const char* linkClassName(LinkClass linkClass) {
-  return linkClass == LinkClass::unoccluded ? "unoccluded" : "partial";
+const char* studyClassName(StudyClass linkClass) {
+  return linkClass == StudyClass::unoccluded ? "unoccluded" : "partial";
 }
 const char* orientationName(Orientation orientation) {
   for (const auto& [value, name] : kOrientationNames)
@@ -324,11 +324,11 @@ std::unique_ptr<OccluderScene> GeneratedLink::buildScene() const {
   return scene;
 }
 
-GeneratedLink generateLink(const GeometryRanges& ranges, LinkClass linkClass, std::uint64_t seed) {
+GeneratedLink generateLink(const GeometryRanges& ranges, StudyClass linkClass, std::uint64_t seed) {
   ScenarioRandom random(seed);
   GeneratedLink link;
   placePatches(ranges, random, link);
-  if (linkClass == LinkClass::partial) placeOccluders(ranges, random, link);
+  if (linkClass == StudyClass::partial) placeOccluders(ranges, random, link);
   return link;
 }
 

@@ -34,11 +34,11 @@
 
 namespace radquad {
 
-enum class LinkClass { unoccluded, partial };
+enum class StudyClass { unoccluded, partial };
 enum class Orientation { parallel, perpendicular, tilted };
 enum class OccluderKind { none, oneBlocker, severalBlockers, slats, soup };
 
-const char* linkClassName(LinkClass linkClass);
+const char* studyClassName(StudyClass linkClass);
 const char* orientationName(Orientation orientation);
 const char* occluderKindName(OccluderKind kind);
 
@@ -77,6 +77,6 @@ struct GeneratedLink {
 };
 
 // The candidate link of `linkClass` drawn from `seed`. Unoccluded links have no occluders.
-GeneratedLink generateLink(const GeometryRanges& ranges, LinkClass linkClass, std::uint64_t seed);
+GeneratedLink generateLink(const GeometryRanges& ranges, StudyClass linkClass, std::uint64_t seed);
 
 }  // namespace radquad

@@ -48,8 +48,8 @@ StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& whe
 
   const auto& classes = value["classes"];
   checkKeys(classes, where + ": classes", {"unoccluded", "partial"}, {});
-  for (const LinkClass linkClass : {LinkClass::unoccluded, LinkClass::partial}) {
-    const char* name = linkClassName(linkClass);
+  for (const StudyClass linkClass : {StudyClass::unoccluded, StudyClass::partial}) {
+    const char* name = studyClassName(linkClass);
     if (classes.contains(name)) {
       config.classes.emplace_back(
           linkClass, positiveInteger(classes[name], where + ": classes: " + name, 1000000));
@@ -57,7 +57,7 @@ StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& whe
   }
   if (config.classes.empty()) throw InputError(where + ": classes: name at least one class");
   if (config.figure == StudyFigure::fig1 &&
-      (config.classes.size() != 1 || config.classes[0].first != LinkClass::partial)) {
+      (config.classes.size() != 1 || config.classes[0].first != StudyClass::partial)) {
     throw InputError(where + ": classes: Figure 1 is measured on partial links only");
   }
 
@@ -100,7 +100,7 @@ StudyConfig readStudyConfig(const std::filesystem::path& path) {
 
 nlohmann::json studyConfigToJson(const StudyConfig& config) {
   nlohmann::json classes = nlohmann::json::object();
-  for (const auto& [linkClass, count] : config.classes) classes[linkClassName(linkClass)] = count;
+  for (const auto& [linkClass, count] : config.classes) classes[studyClassName(linkClass)] = count;
   return {{"figure", config.figure == StudyFigure::fig1 ? "fig1" : "fig2"},
           {"degree", config.degree()},
           {"seed", config.seed},

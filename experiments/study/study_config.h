@@ -36,7 +36,7 @@ enum class StudyFigure { fig1, fig2 };
 struct StudyConfig {
   StudyFigure figure = StudyFigure::fig1;
   std::uint64_t seed = 1;
-  std::vector<std::pair<LinkClass, int>> classes;  // in the order unoccluded, partial
+  std::vector<std::pair<StudyClass, int>> classes;  // in the order unoccluded, partial
   std::vector<std::string> rules;
   int trials = 10;
   ReferenceOptions reference;

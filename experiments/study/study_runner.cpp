@@ -43,7 +43,7 @@ void addInto(std::vector<double>& sum, const std::vector<double>& values, double
 // decide whether a partial candidate qualifies (one draw; the replicates wait for the links
 // that are kept).
 void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
-                       LinkClass linkClass, std::uint64_t index, CouplingAccumulator& accumulator,
+                       StudyClass linkClass, std::uint64_t index, CouplingAccumulator& accumulator,
                        Candidate& out) {
   const GeneratedLink generated =
       generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
@@ -58,7 +58,7 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.occluderKind = generated.occluderKind;
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;
-  if (linkClass == LinkClass::partial) {
+  if (linkClass == StudyClass::partial) {
     out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
     out.accepted = !out.mostlyBlocked && record.visibleFraction < config.maxVisibleFraction;
   }
@@ -66,7 +66,7 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
 
 // Second pass over a kept link: the reference's standard error, the gold, and every rule.
 void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
-               LinkClass linkClass, CouplingAccumulator& accumulator, Candidate& candidate) {
+               StudyClass linkClass, CouplingAccumulator& accumulator, Candidate& candidate) {
   const std::uint64_t index = candidate.record.candidate;
   const GeneratedLink generated =
       generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
@@ -117,7 +117,7 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
 }
 
 ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const Scorers& scorers,
-                  std::size_t classIndex, LinkClass linkClass, int wanted) {
+                  std::size_t classIndex, StudyClass linkClass, int wanted) {
   ClassRun run;
   run.linkClass = linkClass;
   run.wanted = wanted;
@@ -126,7 +126,7 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
   std::vector<Candidate> candidates;
   while (run.links.size() < std::size_t(wanted)) {
     if (run.generated >= limit) {
-      throw InputError(std::string("class '") + linkClassName(linkClass) + "': only " +
+      throw InputError(std::string("class '") + studyClassName(linkClass) + "': only " +
                        std::to_string(run.links.size()) + " of " + std::to_string(wanted) +
                        " links qualified in " + std::to_string(run.generated) +
                        " candidates (max_candidates_per_link = " +
@@ -174,7 +174,7 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                       });
     for (const std::size_t k : kept) run.links.push_back(std::move(candidates[k].record));
     if (options.progress) {
-      std::cerr << "radquad study: " << linkClassName(linkClass) << " links " << run.links.size()
+      std::cerr << "radquad study: " << studyClassName(linkClass) << " links " << run.links.size()
                 << "/" << wanted << " (" << run.generated << " candidates)\n";
     }
   }

@@ -43,7 +43,7 @@ struct LinkRecord {
 };
 
 struct ClassRun {
-  LinkClass linkClass = LinkClass::partial;
+  StudyClass linkClass = StudyClass::partial;
   int wanted = 0;
   std::uint64_t generated = 0;
   std::uint64_t rejectedMostlyVisible = 0;  // visible fraction >= high

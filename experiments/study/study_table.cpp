@@ -174,7 +174,7 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
   } else {
     nlohmann::json classes = nlohmann::json::object();
     for (const ClassRun& classRun : run.classes) {
-      classes[linkClassName(classRun.linkClass)] = classTable(run, classRun, options.gold, true);
+      classes[studyClassName(classRun.linkClass)] = classTable(run, classRun, options.gold, true);
     }
     table["classes"] = classes;
   }

@@ -26,15 +26,15 @@ bool whollyInFront(const Patch& patch, const Patch& other) {
 TEST(Scenario, TheSameSeedGivesTheSameLink) {
   const GeometryRanges ranges;
   for (std::uint64_t seed = 0; seed < 20; ++seed) {
-    const GeneratedLink a = generateLink(ranges, LinkClass::partial, seed);
-    const GeneratedLink b = generateLink(ranges, LinkClass::partial, seed);
+    const GeneratedLink a = generateLink(ranges, StudyClass::partial, seed);
+    const GeneratedLink b = generateLink(ranges, StudyClass::partial, seed);
     EXPECT_EQ(a.receiver.origin, b.receiver.origin);
     EXPECT_EQ(a.source.edgeU, b.source.edgeU);
     EXPECT_EQ(a.blockers.size(), b.blockers.size());
     EXPECT_EQ(a.soupVertices, b.soupVertices);
   }
-  EXPECT_NE(generateLink(ranges, LinkClass::partial, 1).source.origin,
-            generateLink(ranges, LinkClass::partial, 2).source.origin);
+  EXPECT_NE(generateLink(ranges, StudyClass::partial, 1).source.origin,
+            generateLink(ranges, StudyClass::partial, 2).source.origin);
 }
 
 TEST(Scenario, LinksCoverTheConfiguredRanges) {
@@ -42,7 +42,7 @@ TEST(Scenario, LinksCoverTheConfiguredRanges) {
   std::set<Orientation> orientations;
   std::set<OccluderKind> kinds;
   for (std::uint64_t seed = 0; seed < 400; ++seed) {
-    const GeneratedLink link = generateLink(ranges, LinkClass::partial, deriveSeed(99, {seed}));
+    const GeneratedLink link = generateLink(ranges, StudyClass::partial, deriveSeed(99, {seed}));
     orientations.insert(link.orientation);
     kinds.insert(link.occluderKind);
     for (const Patch* patch : {&link.receiver, &link.source}) {
@@ -78,7 +78,7 @@ TEST(Scenario, LinksCoverTheConfiguredRanges) {
 TEST(Scenario, UnoccludedLinksHaveNoOccluders) {
   const GeometryRanges ranges;
   for (std::uint64_t seed = 0; seed < 50; ++seed) {
-    const GeneratedLink link = generateLink(ranges, LinkClass::unoccluded, seed);
+    const GeneratedLink link = generateLink(ranges, StudyClass::unoccluded, seed);
     EXPECT_FALSE(link.hasOccluders());
     EXPECT_EQ(link.buildScene(), nullptr);
   }

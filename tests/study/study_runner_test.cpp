@@ -17,7 +17,7 @@ StudyConfig tinyConfig(int unoccluded, int partial) {
                               "rules": ["FullGauss", "Stroud65", "NRook", "Stratified"],
                               "trials": 3, "reference": {"replicates": 3}})"),
       "tiny");
-  config.classes = {{LinkClass::unoccluded, unoccluded}, {LinkClass::partial, partial}};
+  config.classes = {{StudyClass::unoccluded, unoccluded}, {StudyClass::partial, partial}};
   return config;
 }
 
@@ -61,7 +61,7 @@ TEST(StudyRunner, PartialLinksQualifyByTheReferenceVisibleFraction) {
 TEST(StudyRunner, ReferenceStandardErrorAgreesWithTheReferenceLibrary) {
   // The runner's single-pass (Welford) estimator against stratifiedReference's two-pass one.
   const GeometryRanges ranges;
-  for (const LinkClass linkClass : {LinkClass::unoccluded, LinkClass::partial}) {
+  for (const StudyClass linkClass : {StudyClass::unoccluded, StudyClass::partial}) {
     const GeneratedLink generated = generateLink(ranges, linkClass, 5);
     const auto scene = generated.buildScene();
     const Link link{generated.receiver, generated.source, scene.get()};

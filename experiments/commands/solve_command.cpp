@@ -1,0 +1,178 @@
+// `radquad solve SCENE --degree D --rules fixed [--render out.png] [--bf-eps E]
+// [--min-area A]`: solves a scene with the hierarchical Galerkin radiosity solver and prints
+// one JSON object on stdout (options echoed, kernel evaluations, links by class, elements,
+// iterations, time, and every patch's mean radiosity); progress goes to stderr.
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "experiments/atomic_file.h"
+#include "experiments/commands/commands.h"
+#include "experiments/scene_input.h"
+#include "kernel/input_error.h"
+#include "radiosity/render.h"
+#include "radiosity/solver.h"
+
+namespace radquad {
+namespace {
+
+struct SolveCommandOptions {
+  std::string scene;
+  int degree = 0;
+  std::string rules = "fixed";
+  std::string renderPath;
+  double bfEpsilon = SolverOptions{}.bfEpsilon;
+  double minArea = SolverOptions{}.minArea;
+  double partialFactor = SolverOptions{}.partialFactor;
+  double tolerance = SolverOptions{}.tolerance;
+  int maxIterations = SolverOptions{}.maxIterations;
+  int singularDepth = SolverOptions{}.singularDepth;
+  int threads = 0;
+  bool quiet = false;
+};
+
+nlohmann::json vectorJson(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+void runSolve(const SolveCommandOptions& command) {
+  if (command.degree < 0 || command.degree > 3) {
+    throw InputError("--degree " + std::to_string(command.degree) + ": must be 0, 1, 2 or 3");
+  }
+  if (command.rules != "fixed") {
+    throw InputError("--rules " + command.rules + ": unknown rule choice (valid: fixed)");
+  }
+  if (!(command.bfEpsilon > 0.0)) throw InputError("--bf-eps: must be > 0");
+  if (!(command.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
+  if (!(command.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
+  if (!(command.tolerance > 0.0)) throw InputError("--tolerance: must be > 0");
+  const Scene scene = loadScene(command.scene);
+
+  std::optional<tbb::global_control> threadLimit;
+  if (command.threads > 0) {
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(command.threads));
+  }
+  SolverOptions options;
+  options.degree = command.degree;
+  options.rules = RuleChoice::kFixed;
+  options.bfEpsilon = command.bfEpsilon;
+  options.minArea = command.minArea;
+  options.partialFactor = command.partialFactor;
+  options.tolerance = command.tolerance;
+  options.maxIterations = command.maxIterations;
+  options.singularDepth = command.singularDepth;
+  if (!command.quiet) {
+    options.progress = [](const SolveProgress& progress) {
+      if (progress.elapsedSeconds < 1.0) return;
+      std::fprintf(stderr,
+                   "radquad solve: iteration %d: %zu links, %zu elements, %llu kernel "
+                   "evaluations, change %.3g, %.1f s\n",
+                   progress.iteration, progress.activeLinks, progress.elements,
+                   static_cast<unsigned long long>(progress.kernelEvaluations), progress.change,
+                   progress.elapsedSeconds);
+    };
+  }
+  Solver solver(scene, options);
+  solver.solve();
+  const SolveStatistics& statistics = solver.statistics();
+  const Hierarchy& hierarchy = solver.hierarchy();
+
+  nlohmann::json patches = nlohmann::json::array();
+  for (std::size_t p = 0; p < scene.patches.size(); ++p) {
+    patches.push_back(
+        {{"name", scene.patches[p].name},
+         {"area", scene.patches[p].patch.area},
+         {"mean_radiosity", vectorJson(hierarchy[hierarchy.root(int(p))].meanRadiosity())}});
+  }
+  nlohmann::json out = {
+      {"scene", command.scene},
+      {"options",
+       {{"degree", command.degree},
+        {"rules", command.rules},
+        {"bf_eps", options.bfEpsilon},
+        {"min_area", solver.minArea()},
+        {"partial_factor", options.partialFactor},
+        {"tolerance", options.tolerance},
+        {"max_iterations", options.maxIterations},
+        {"singular_depth", options.singularDepth},
+        {"iteration", "jacobi"}}},
+      {"kernel_evaluations", statistics.kernelEvaluations},
+      {"coupling_computations", statistics.couplingComputations},
+      {"recomputations", statistics.recomputations},
+      {"links",
+       {{"unoccluded", statistics.unoccludedLinks},
+        {"partial", statistics.partialLinks},
+        {"occluded", statistics.occludedLinks},
+        {"refined", statistics.refinedLinks}}},
+      {"rays",
+       {{"classification", statistics.classificationRays},
+        {"integration", statistics.integrationRays}}},
+      {"elements", hierarchy.size()},
+      {"iterations", statistics.iterations},
+      {"converged", statistics.converged},
+      {"final_change", statistics.finalChange},
+      {"elapsed_seconds", statistics.elapsedSeconds},
+      {"kernel_evaluations_per_second",
+       statistics.elapsedSeconds > 0.0
+           ? double(statistics.kernelEvaluations) / statistics.elapsedSeconds
+           : 0.0},
+      {"patches", patches},
+  };
+  if (!command.renderPath.empty()) {
+    const Camera camera = scene.camera ? *scene.camera : defaultCamera(scene);
+    writeFileAtomically(command.renderPath, encodePng(renderRadiosity(hierarchy, camera)));
+    out["render"] = command.renderPath;
+  }
+  std::cout << out.dump(2) << "\n";
+}
+
+}  // namespace
+
+void addSolveCommand(CLI::App& app) {
+  auto options = std::make_shared<SolveCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "solve", "Solve a scene with hierarchical Galerkin radiosity; prints JSON on stdout");
+  command
+      ->add_option("scene", options->scene,
+                   "A scene JSON file, or a built-in scene: cornell, slats")
+      ->required();
+  command->add_option("--degree", options->degree, "Basis degree d, 0..3")->capture_default_str();
+  command
+      ->add_option("--rules", options->rules, "Gauss rule choice per link: fixed ((d+1)^4 points)")
+      ->capture_default_str();
+  command->add_option("--render", options->renderPath,
+                      "Write a PNG of the solution from the scene's camera");
+  command
+      ->add_option("--bf-eps", options->bfEpsilon,
+                   "BF oracle threshold, relative to the emitted power per unit scene area")
+      ->capture_default_str();
+  command
+      ->add_option("--min-area", options->minArea,
+                   "Smallest element area to split (scene units^2; 0: 1e-4 of the largest patch)")
+      ->capture_default_str();
+  command
+      ->add_option("--partial-factor", options->partialFactor,
+                   "Multiplier of a partially visible link's transfer estimate")
+      ->capture_default_str();
+  command
+      ->add_option("--tolerance", options->tolerance,
+                   "Stop when the relative L2 change of patch radiosity is below this")
+      ->capture_default_str();
+  command->add_option("--max-iterations", options->maxIterations, "Iteration cap")
+      ->capture_default_str();
+  command
+      ->add_option("--singular-depth", options->singularDepth,
+                   "Quadrant subdivision levels for links between touching elements")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->capture_default_str();
+  command->add_flag("--quiet", options->quiet, "No progress on stderr");
+  command->callback([options] { runSolve(*options); });
+}
+
+}  // namespace radquad

@@ -1,0 +1,152 @@
+#include "radiosity/render.h"
+
+#include <embree3/rtcore.h>
+#include <stb_image_write.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "kernel/occluder_scene.h"
+
+namespace radquad {
+namespace {
+
+// An Embree scene of all patches with geometry id = patch index, for closest hits.
+class PrimaryScene {
+ public:
+  explicit PrimaryScene(const Scene& scene) {
+    scene_ = rtcNewScene(embreeDevice());
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    for (std::size_t p = 0; p < scene.patches.size(); ++p) {
+      const Patch& patch = scene.patches[p].patch;
+      RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_QUAD);
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
+      const Eigen::Vector3d corners[4] = {patch.origin, patch.origin + patch.edgeU,
+                                          patch.origin + patch.edgeU + patch.edgeV,
+                                          patch.origin + patch.edgeV};
+      for (int c = 0; c < 4; ++c) {
+        for (int axis = 0; axis < 3; ++axis) vertices[3 * c + axis] = float(corners[c][axis]);
+      }
+      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
+      for (unsigned c = 0; c < 4; ++c) indices[c] = c;
+      rtcCommitGeometry(geometry);
+      rtcAttachGeometryByID(scene_, geometry, unsigned(p));
+      rtcReleaseGeometry(geometry);
+    }
+    rtcCommitScene(scene_);
+  }
+  ~PrimaryScene() { rtcReleaseScene(scene_); }
+  PrimaryScene(const PrimaryScene&) = delete;
+  PrimaryScene& operator=(const PrimaryScene&) = delete;
+
+  // The patch hit first and the distance along `direction` (unit), or -1.
+  int intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                double& distance) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit hit;
+    hit.ray.org_x = float(origin.x());
+    hit.ray.org_y = float(origin.y());
+    hit.ray.org_z = float(origin.z());
+    hit.ray.dir_x = float(direction.x());
+    hit.ray.dir_y = float(direction.y());
+    hit.ray.dir_z = float(direction.z());
+    hit.ray.tnear = 0.0f;
+    hit.ray.tfar = std::numeric_limits<float>::infinity();
+    hit.ray.time = 0.0f;
+    hit.ray.mask = 0xFFFFFFFFu;
+    hit.ray.id = 0;
+    hit.ray.flags = 0;
+    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &hit);
+    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+    distance = hit.ray.tfar;
+    return int(hit.hit.geomID);
+  }
+
+ private:
+  RTCScene scene_ = nullptr;
+};
+
+// (u, v) of a point of the patch's plane: the least-squares solution of
+// u edgeU + v edgeV = point - origin, clamped to the unit square.
+void patchCoordinates(const Patch& patch, const Eigen::Vector3d& point, double& u, double& v) {
+  const Eigen::Vector3d r = point - patch.origin;
+  const double aa = patch.edgeU.dot(patch.edgeU), ab = patch.edgeU.dot(patch.edgeV);
+  const double bb = patch.edgeV.dot(patch.edgeV);
+  const double ar = patch.edgeU.dot(r), br = patch.edgeV.dot(r);
+  const double determinant = aa * bb - ab * ab;
+  u = std::clamp((bb * ar - ab * br) / determinant, 0.0, 1.0);
+  v = std::clamp((aa * br - ab * ar) / determinant, 0.0, 1.0);
+}
+
+void appendBytes(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
+}  // namespace
+
+RadianceImage renderRadiosity(const Hierarchy& hierarchy, const Camera& camera) {
+  const Scene& scene = hierarchy.scene();
+  const PrimaryScene primary(scene);
+  RadianceImage image;
+  image.width = camera.width;
+  image.height = camera.height;
+  image.rgb.assign(std::size_t(camera.width) * std::size_t(camera.height) * 3, 0.0f);
+  const Eigen::Vector3d forward = (camera.lookAt - camera.eye).normalized();
+  const Eigen::Vector3d right = forward.cross(camera.up).normalized();
+  const Eigen::Vector3d up = right.cross(forward);
+  const double tanHalf = std::tan(0.5 * camera.fovDegrees * M_PI / 180.0);
+  const double aspect = double(camera.width) / double(camera.height);
+  tbb::parallel_for(0, camera.height, [&](int y) {
+    for (int x = 0; x < camera.width; ++x) {
+      const double px = (2.0 * (x + 0.5) / camera.width - 1.0) * aspect * tanHalf;
+      const double py = (1.0 - 2.0 * (y + 0.5) / camera.height) * tanHalf;
+      const Eigen::Vector3d direction = (forward + px * right + py * up).normalized();
+      double distance = 0.0;
+      const int p = primary.intersect(camera.eye, direction, distance);
+      if (p < 0) continue;
+      const Patch& patch = scene.patches[std::size_t(p)].patch;
+      if (patch.normal.dot(direction) >= 0.0) continue;  // the back of a one-sided patch
+      double u = 0.0, v = 0.0;
+      patchCoordinates(patch, camera.eye + distance * direction, u, v);
+      const Eigen::Vector3d radiosity = hierarchy.radiosityAt(p, u, v);
+      float* pixel = image.rgb.data() + 3 * (std::size_t(y) * std::size_t(camera.width) + x);
+      for (int c = 0; c < 3; ++c) pixel[c] = float(std::max(0.0, radiosity[c]));
+    }
+  });
+  return image;
+}
+
+std::string encodePng(const RadianceImage& image, double exposure, double gamma) {
+  const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+  if (exposure <= 0.0) {
+    std::vector<float> brightest(pixels);
+    for (std::size_t k = 0; k < pixels; ++k) {
+      brightest[k] = std::max({image.rgb[3 * k], image.rgb[3 * k + 1], image.rgb[3 * k + 2]});
+    }
+    const std::size_t rank = std::min(pixels - 1, std::size_t(0.97 * double(pixels)));
+    std::nth_element(brightest.begin(), brightest.begin() + std::ptrdiff_t(rank), brightest.end());
+    exposure = brightest[rank] > 0.0f ? 1.0 / brightest[rank] : 1.0;
+  }
+  std::vector<unsigned char> bytes(pixels * 3);
+  for (std::size_t k = 0; k < pixels * 3; ++k) {
+    const double value = std::clamp(double(image.rgb[k]) * exposure, 0.0, 1.0);
+    bytes[k] = static_cast<unsigned char>(std::lround(255.0 * std::pow(value, 1.0 / gamma)));
+  }
+  std::string png;
+  if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, bytes.data(),
+                              image.width * 3)) {
+    throw std::runtime_error("PNG encoding failed");
+  }
+  return png;
+}
+
+}  // namespace radquad

@@ -1,0 +1,126 @@
+// The hierarchical Galerkin multiwavelet radiosity solver (Gortler, Schroeder, Cohen and
+// Hanrahan 1993, "Wavelet radiosity", with the multiwavelet (Legendre) bases of Alpert as
+// used by Gershbein 1995): quadtree elements per patch, links between elements chosen by
+// the BF oracle of Hanrahan, Salzman and Aupperle 1991, couplings integrated with Gauss
+// product rules, Jacobi gather iterations with push/pull. See radiosity/README.md.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "radiosity/hierarchy.h"
+#include "radiosity/scene.h"
+#include "radiosity/visibility.h"
+
+namespace radquad {
+
+// How each link's Gauss rule (points per axis {Rs, Rt, Su, Sv}) is chosen.
+enum class RuleChoice {
+  kFixed,  // (d+1) points on every axis
+};
+
+struct SolverOptions {
+  int degree = 0;
+  RuleChoice rules = RuleChoice::kFixed;
+  // BF oracle: refine a link when F_estimate * B_source (* partialFactor if partial) exceeds
+  // bfEpsilon times the scene's radiosity scale, its emitted power over its total area
+  // (sum_i max_c E_i,c A_i / sum_i A_i: the mean radiosity before any reflection) ...
+  double bfEpsilon = 0.1;
+  // ... and the larger element's area exceeds minArea (scene units squared); a value <= 0
+  // means 1e-4 of the largest patch's area.
+  double minArea = 0.0;
+  // Partially visible links are less certain: their transfer estimate is multiplied by this.
+  double partialFactor = 4.0;
+  // Iterations stop when the relative L2 change of the patch-level radiosity falls below
+  // this and the last refinement pass split no link.
+  double tolerance = 1e-4;
+  int maxIterations = 200;
+  int maxLevel = 12;  // deepest quadtree level an element may have
+  // Links between touching elements (a shared edge or corner: the kernel is singular there)
+  // are integrated by splitting both elements into quadrants, recursively to this depth,
+  // where sub-elements still touch; the link's rule is applied to every piece.
+  int singularDepth = 3;
+  // Called after every iteration (for progress reports); may be empty.
+  std::function<void(const struct SolveProgress&)> progress;
+};
+
+struct SolveProgress {
+  int iteration = 0;
+  std::size_t activeLinks = 0;
+  std::size_t elements = 0;
+  std::uint64_t kernelEvaluations = 0;
+  double change = 0.0;
+  double elapsedSeconds = 0.0;
+};
+
+// One link: energy from `source` element to `receiver` element.
+struct SolverLink {
+  int receiver = 0;
+  int source = 0;
+  LinkClass visibility = LinkClass::kUnoccluded;
+  bool active = true;
+  bool computed = false;                   // whether `coupling` holds this rule's matrix
+  std::array<int, 4> rule = {1, 1, 1, 1};  // Gauss points on {Rs, Rt, Su, Sv}
+  Eigen::MatrixXd coupling;                // K (DESIGN.md): rows receiver, columns source
+  std::uint64_t kernelEvaluations = 0;     // of the last computation
+  std::vector<int> candidates;             // candidate occluders (patch indices)
+};
+
+struct SolveStatistics {
+  std::uint64_t kernelEvaluations = 0;     // over the whole solve, all computations
+  std::uint64_t couplingComputations = 0;  // links integrated (first time or again)
+  std::uint64_t recomputations = 0;        // links integrated again with a new rule
+  std::uint64_t classificationRays = 0;
+  std::uint64_t integrationRays = 0;
+  std::size_t unoccludedLinks = 0, partialLinks = 0, occludedLinks = 0;  // final, by class
+  std::size_t refinedLinks = 0;  // links split into sub-links
+  int iterations = 0;
+  bool converged = false;
+  double finalChange = 0.0;
+  double elapsedSeconds = 0.0;
+};
+
+class Solver {
+ public:
+  Solver(const Scene& scene, SolverOptions options);
+  ~Solver();
+
+  // Runs refinement and iterations to convergence.
+  void solve();
+
+  const Hierarchy& hierarchy() const { return *hierarchy_; }
+  const std::vector<SolverLink>& links() const { return links_; }
+  const SolveStatistics& statistics() const { return statistics_; }
+  const SolverOptions& options() const { return options_; }
+  double minArea() const { return minArea_; }
+
+ private:
+  struct Impl;
+
+  void createInitialLinks();
+  bool refinementPass();
+  void classifyLinks(std::vector<int>& created);
+  bool oracleSaysRefine(const SolverLink& link) const;
+  std::array<int, 4> chooseRule(const SolverLink& link) const;
+  void computeCouplings();
+  void gather();
+  double pushPull();
+  void rebuildElementLinks();
+  void countLinks();
+
+  const Scene& scene_;
+  SolverOptions options_;
+  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Hierarchy> hierarchy_;
+  std::vector<SolverLink> links_;
+  SolveStatistics statistics_;
+  double minArea_ = 0.0;
+  double radiosityScale_ = 0.0;  // the emitted power over the total area
+};
+
+}  // namespace radquad

@@ -1,0 +1,59 @@
+// Link visibility classes, decided conservatively (a link with an occluder in the way is
+// never called unoccluded):
+//   1. Candidate occluders: the scene's patches, other than the link's own two, that are not
+//      separated from the shaft (the convex hull of the two elements) by one of its
+//      supporting planes: the receiver's plane, the source's plane (only points in front of
+//      both matter: elsewhere the kernel is 0), the shaft's bounding box, and every plane
+//      through an edge of one element and a corner of the other that has all eight corners
+//      on one side (Haines and Wallace 1994, "Shaft culling for efficient ray-cast
+//      radiosity"). A plane test can only fail to separate, never separate wrongly, so a
+//      patch that meets the shaft is always a candidate.
+//   2. No candidate: unoccluded. Otherwise rays on a 4x4 by 4x4 grid of element points (the
+//      pairs where the unoccluded kernel is positive): all blocked means occluded; anything
+//      else, even all rays visible, is partial.
+// A sub-link's shaft lies inside its parent's, so its candidates are a subset of the parent's.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "kernel/occluder_scene.h"
+#include "kernel/patch.h"
+#include "radiosity/scene.h"
+
+namespace radquad {
+
+enum class LinkClass : std::uint8_t { kUnoccluded, kPartial, kOccluded };
+
+const char* linkClassName(LinkClass visibility);
+
+// Whether the unoccluded kernel can be positive anywhere: some source point strictly in
+// front of the receiver's plane and some receiver point strictly in front of the source's.
+bool mayExchange(const Patch& receiver, const Patch& source);
+
+struct Classification {
+  LinkClass visibility = LinkClass::kUnoccluded;
+  std::vector<int> candidates;  // patch indices
+  std::uint64_t raysCast = 0;
+};
+
+class VisibilityClassifier {
+ public:
+  // `occluders` holds every patch of `scene` (committed).
+  VisibilityClassifier(const Scene& scene, const OccluderScene& occluders);
+
+  static constexpr int kGridPoints = 4;  // per axis of each element
+
+  // `parentCandidates`: the candidates of the parent link, or null for a top-level link
+  // (then every patch but the two is tested).
+  Classification classify(const Patch& receiver, int receiverPatch, const Patch& source,
+                          int sourcePatch, const std::vector<int>* parentCandidates) const;
+
+ private:
+  bool separated(const Patch& receiver, const Patch& source, int patch) const;
+
+  const Scene& scene_;
+  const OccluderScene& occluders_;
+};
+
+}  // namespace radquad

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# `radquad solve` through the real binary: bad scenes exit with status 2 and a message that
+# names the patch; a good scene exits 0 with the documented JSON fields.
+# Usage: RADQUAD=PATH/TO/radquad solve_cli_test.sh (or the path as the first argument)
+set -u
+radquad="${RADQUAD:-${1:-}}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+expect_status() {  # expected-status description expected-stderr-text args...
+  local expected="$1" description="$2" text="$3"
+  shift 3
+  "$radquad" "$@" >"$work/out" 2>"$work/err"
+  local status=$?
+  if [[ $status -ne $expected ]]; then
+    echo "FAIL: $description: exit status $status, expected $expected"; cat "$work/err"
+    failures=$((failures + 1))
+  elif [[ -n "$text" ]] && ! grep -q -- "$text" "$work/err"; then
+    echo "FAIL: $description: stderr lacks '$text'"; cat "$work/err"
+    failures=$((failures + 1))
+  fi
+}
+
+square='"origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0]'
+printf '{"patches": [{%s, "reflectance": [0.5,0.5,0.5]' "$square" >"$work/truncated.json"
+printf '{"patches": [{%s, "reflectance": [0.5,1.5,0.5], "name": "lamp"}]}' "$square" >"$work/reflectance.json"
+printf '{"patches": [{%s, "reflectance": [0.5,0.5,0.5], "emission": [-1,0,0]}]}' "$square" >"$work/emission.json"
+printf '{"patches": [{%s}]}' "$square" >"$work/no_reflectance.json"
+printf '{"patches": [{"origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [2,0,0], "reflectance": [0,0,0], "name": "flat"}]}' >"$work/degenerate.json"
+printf '{"patches": [{%s, "reflectance": [0.5,0.5,0.5], "colour": 1}]}' "$square" >"$work/unknown_key.json"
+printf '{"patches": []}' >"$work/empty.json"
+
+expect_status 2 "truncated JSON" "malformed JSON" solve "$work/truncated.json"
+expect_status 2 "reflectance above 1" "patches\[0\] (lamp): reflectance" solve "$work/reflectance.json"
+expect_status 2 "negative emission" "patches\[0\]" solve "$work/emission.json"
+expect_status 2 "missing reflectance" "missing key 'reflectance'" solve "$work/no_reflectance.json"
+expect_status 2 "degenerate patch" "patches\[0\] (flat)" solve "$work/degenerate.json"
+expect_status 2 "unknown key" "unknown key 'colour'" solve "$work/unknown_key.json"
+expect_status 2 "no patches" "no patches" solve "$work/empty.json"
+expect_status 2 "no such scene" "not a built-in scene" solve "$work/missing.json"
+expect_status 2 "degree out of range" "--degree" solve cornell --degree 4
+expect_status 2 "unknown rule choice" "--rules" solve cornell --rules magic
+
+expect_status 0 "built-in scene with a render" "" solve cornell --degree 0 --render "$work/cornell.png"
+for field in kernel_evaluations links elements iterations elapsed_seconds patches mean_radiosity; do
+  if ! grep -q "\"$field\"" "$work/out"; then
+    echo "FAIL: solve output lacks \"$field\""; failures=$((failures + 1))
+  fi
+done
+if [[ "$(head -c 8 "$work/cornell.png" | od -An -tx1 | tr -d ' \n')" != "89504e470d0a1a0a" ]]; then
+  echo "FAIL: --render did not write a PNG"; failures=$((failures + 1))
+fi
+
+if [[ $failures -ne 0 ]]; then echo "$failures failure(s)"; exit 1; fi
+echo "all solve CLI checks passed"
