@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   radquad::addStudyCommand(app);
   radquad::addFiguresCommand(app);
   radquad::addSolveCommand(app);
+  radquad::addAdaptiveCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

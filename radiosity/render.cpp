@@ -125,17 +125,21 @@ RadianceImage renderRadiosity(const Hierarchy& hierarchy, const Camera& camera) 
   return image;
 }
 
+double automaticExposure(const RadianceImage& image) {
+  const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+  if (pixels == 0) return 1.0;
+  std::vector<float> brightest(pixels);
+  for (std::size_t k = 0; k < pixels; ++k) {
+    brightest[k] = std::max({image.rgb[3 * k], image.rgb[3 * k + 1], image.rgb[3 * k + 2]});
+  }
+  const std::size_t rank = std::min(pixels - 1, std::size_t(0.97 * double(pixels)));
+  std::nth_element(brightest.begin(), brightest.begin() + std::ptrdiff_t(rank), brightest.end());
+  return brightest[rank] > 0.0f ? 1.0 / brightest[rank] : 1.0;
+}
+
 std::string encodePng(const RadianceImage& image, double exposure, double gamma) {
   const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
-  if (exposure <= 0.0) {
-    std::vector<float> brightest(pixels);
-    for (std::size_t k = 0; k < pixels; ++k) {
-      brightest[k] = std::max({image.rgb[3 * k], image.rgb[3 * k + 1], image.rgb[3 * k + 2]});
-    }
-    const std::size_t rank = std::min(pixels - 1, std::size_t(0.97 * double(pixels)));
-    std::nth_element(brightest.begin(), brightest.begin() + std::ptrdiff_t(rank), brightest.end());
-    exposure = brightest[rank] > 0.0f ? 1.0 / brightest[rank] : 1.0;
-  }
+  if (exposure <= 0.0) exposure = automaticExposure(image);
   std::vector<unsigned char> bytes(pixels * 3);
   for (std::size_t k = 0; k < pixels * 3; ++k) {
     const double value = std::clamp(double(image.rgb[k]) * exposure, 0.0, 1.0);

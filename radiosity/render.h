@@ -20,6 +20,10 @@ struct RadianceImage {
 
 RadianceImage renderRadiosity(const Hierarchy& hierarchy, const Camera& camera);
 
+// The automatic exposure: 1 over the 97th percentile of the pixels' largest channel (1 for a
+// black image).
+double automaticExposure(const RadianceImage& image);
+
 // exposure <= 0: automatic. Returns the PNG file's bytes.
 std::string encodePng(const RadianceImage& image, double exposure = 0.0, double gamma = 2.2);
 

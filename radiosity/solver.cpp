@@ -10,6 +10,8 @@
 
 #include "kernel/coupling.h"
 #include "kernel/occluder_scene.h"
+#include "quadrature/adaptive_gauss.h"
+#include "quadrature/random/philox.h"
 #include "radiosity/gauss_tables.h"
 #include "radiosity/link_integration.h"
 
@@ -154,26 +156,81 @@ bool Solver::refinementPass() {
   return refined;
 }
 
-std::array<int, 4> Solver::chooseRule(const SolverLink&) const {
-  switch (options_.rules) {
+const char* ruleChoiceName(RuleChoice rules) {
+  switch (rules) {
     case RuleChoice::kFixed:
-      break;
+      return "fixed";
+    case RuleChoice::kAdaptive:
+      return "adaptive";
+    case RuleChoice::kAdaptiveNoVisibility:
+      return "adaptive-novis";
   }
-  const int n = options_.degree + 1;
-  return {n, n, n, n};
+  return "?";
+}
+
+// Fixed: (d+1)^4. Adaptive (Gershbein 1995, Figure 4): the source's coefficient magnitudes
+// are each component's RMS radiosity over the element, |B_(i,j),c| / sqrt(A_S) (the basis is
+// orthonormal over the element, so int (B M)^2 dA = B^2), largest over channels c, divided by
+// the scene's radiosity scale: ErrThres is then a fraction of the scene's mean emitted
+// radiosity, independent of scene units and element size. A link's rule only grows: the
+// report re-checks couplings after each iteration "to see if we need a better quadrature rule
+// due to the energy gain"; a rule never shrinks back (that would only recompute to lose
+// accuracy). The partial-visibility draw uses a generator keyed by the (receiver, source)
+// element ids, so it is the same whatever the thread count.
+std::array<int, 4> Solver::chooseRule(const SolverLink& link) const {
+  const int degree = options_.degree;
+  const int n = degree + 1;
+  if (options_.rules == RuleChoice::kFixed) return {n, n, n, n};
+  const Element& source = (*hierarchy_)[link.source];
+  const double normaliser =
+      radiosityScale_ > 0.0 ? 1.0 / (std::sqrt(source.geometry.area) * radiosityScale_) : 0.0;
+  double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
+  for (int a = 0; a < n * n; ++a) {
+    magnitudes[a] = source.radiosity.row(a).cwiseAbs().maxCoeff() * normaliser;
+  }
+  AdaptiveGaussInput input;
+  input.degree = degree;
+  input.magnitudes = magnitudes;
+  input.errThres = options_.errThres;
+  input.partiallyOccluded = link.visibility == LinkClass::kPartial;
+  std::array<int, 4> rule;
+  if (options_.rules == RuleChoice::kAdaptive) {
+    PhiloxStream generator(
+        linkSeed(options_.seed, std::uint32_t(link.receiver), std::uint32_t(link.source)), 0);
+    rule = chooseGaussRules(input, generator);
+  } else {
+    rule = chooseGaussRulesNoVisibility(input);
+  }
+  if (link.computed) {
+    for (int axis = 0; axis < 4; ++axis) rule[axis] = std::max(rule[axis], link.rule[axis]);
+  }
+  return rule;
 }
 
 void Solver::computeCouplings() {
+  const auto start = std::chrono::steady_clock::now();
+  // The choices in parallel (each a pure function of its link and the radiosity), the
+  // list of links to integrate in link order.
+  std::vector<std::array<int, 4>> chosen(links_.size());
+  tbb::parallel_for(std::size_t(0), links_.size(), [&](std::size_t k) {
+    if (links_[k].active) chosen[k] = chooseRule(links_[k]);
+  });
   std::vector<int> todo;
   std::vector<std::array<int, 4>> rules;
+  std::vector<bool> again;
   for (std::size_t k = 0; k < links_.size(); ++k) {
     const SolverLink& link = links_[k];
     if (!link.active) continue;
-    const std::array<int, 4> rule = chooseRule(link);
+    // A link whose source has no radiosity yet carries nothing: it is integrated once its
+    // source has some (with every rule choice), so that the adaptive choice sees the
+    // source's coefficients rather than zeros.
+    if (!link.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
+    const std::array<int, 4>& rule = chosen[k];
     if (link.computed && rule == link.rule) continue;
     if (link.computed) ++statistics_.recomputations;
     todo.push_back(int(k));
     rules.push_back(rule);
+    again.push_back(link.computed);
   }
   std::vector<std::uint64_t> rays(todo.size(), 0);
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t k) {
@@ -193,9 +250,14 @@ void Solver::computeCouplings() {
   });
   for (std::size_t k = 0; k < todo.size(); ++k) {
     statistics_.kernelEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
+    if (again[k]) {
+      statistics_.recomputationEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
+    }
     statistics_.integrationRays += rays[k];
   }
   statistics_.couplingComputations += todo.size();
+  statistics_.couplingSeconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void Solver::rebuildElementLinks() {
@@ -213,6 +275,7 @@ void Solver::gather() {
     element.gathered.setZero();
     for (int index : element.links) {
       const SolverLink& link = links_[std::size_t(index)];
+      if (!link.computed) continue;  // its source had no radiosity yet
       element.gathered.noalias() += link.coupling * (*hierarchy_)[link.source].radiosity;
     }
   });

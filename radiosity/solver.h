@@ -21,12 +21,24 @@ namespace radquad {
 
 // How each link's Gauss rule (points per axis {Rs, Rt, Su, Sv}) is chosen.
 enum class RuleChoice {
-  kFixed,  // (d+1) points on every axis
+  kFixed,                 // (d+1) points on every axis
+  kAdaptive,              // Gershbein 1995, Figure 4 (quadrature/adaptive_gauss.h)
+  kAdaptiveNoVisibility,  // Figure 4 without the extra point for partially occluded links
 };
+
+// "fixed", "adaptive", "adaptive-novis".
+const char* ruleChoiceName(RuleChoice rules);
+
+// The default ErrThres of the adaptive rules: a coefficient is significant when its
+// component's RMS radiosity over the source element exceeds this fraction of the scene's
+// emitted radiosity scale (see radiosity/README.md, "Adaptive rules").
+inline constexpr double kDefaultErrThres = 0.1;
 
 struct SolverOptions {
   int degree = 0;
   RuleChoice rules = RuleChoice::kFixed;
+  // Adaptive rules: ErrThres, relative to the scene's radiosity scale (below).
+  double errThres = kDefaultErrThres;
   // BF oracle: refine a link when F_estimate * B_source (* partialFactor if partial) exceeds
   // bfEpsilon times the scene's radiosity scale, its emitted power over its total area
   // (sum_i max_c E_i,c A_i / sum_i A_i: the mean radiosity before any reflection) ...
@@ -45,6 +57,8 @@ struct SolverOptions {
   // are integrated by splitting both elements into quadrants, recursively to this depth,
   // where sub-elements still touch; the link's rule is applied to every piece.
   int singularDepth = 3;
+  // The base seed of the links' own generators (adaptive rules on partial links).
+  std::uint64_t seed = 0;
   // Called after every iteration (for progress reports); may be empty.
   std::function<void(const struct SolveProgress&)> progress;
 };
@@ -72,9 +86,10 @@ struct SolverLink {
 };
 
 struct SolveStatistics {
-  std::uint64_t kernelEvaluations = 0;     // over the whole solve, all computations
-  std::uint64_t couplingComputations = 0;  // links integrated (first time or again)
-  std::uint64_t recomputations = 0;        // links integrated again with a new rule
+  std::uint64_t kernelEvaluations = 0;         // over the whole solve, all computations
+  std::uint64_t couplingComputations = 0;      // links integrated (first time or again)
+  std::uint64_t recomputations = 0;            // links integrated again with a new rule
+  std::uint64_t recomputationEvaluations = 0;  // kernel evaluations of those (included above)
   std::uint64_t classificationRays = 0;
   std::uint64_t integrationRays = 0;
   std::size_t unoccludedLinks = 0, partialLinks = 0, occludedLinks = 0;  // final, by class
@@ -83,6 +98,9 @@ struct SolveStatistics {
   bool converged = false;
   double finalChange = 0.0;
   double elapsedSeconds = 0.0;
+  // Wall time spent choosing rules and integrating couplings (the part the rule choice
+  // changes; the rest is refinement, visibility classification, gathers and push/pull).
+  double couplingSeconds = 0.0;
 };
 
 class Solver {
@@ -98,6 +116,8 @@ class Solver {
   const SolveStatistics& statistics() const { return statistics_; }
   const SolverOptions& options() const { return options_; }
   double minArea() const { return minArea_; }
+  // The scene's emitted power over its total area (the BF oracle's and ErrThres's scale).
+  double radiosityScale() const { return radiosityScale_; }
 
  private:
   struct Impl;

@@ -12,5 +12,6 @@ void addRulesCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addFiguresCommand(CLI::App& app);
 void addSolveCommand(CLI::App& app);
+void addAdaptiveCommand(CLI::App& app);
 
 }  // namespace radquad

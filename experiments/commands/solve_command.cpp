@@ -1,9 +1,12 @@
-// `radquad solve SCENE --degree D --rules fixed [--render out.png] [--bf-eps E]
-// [--min-area A]`: solves a scene with the hierarchical Galerkin radiosity solver and prints
-// one JSON object on stdout (options echoed, kernel evaluations, links by class, elements,
-// iterations, time, and every patch's mean radiosity); progress goes to stderr.
+// `radquad solve SCENE --degree D --rules fixed|adaptive|adaptive-novis [--threshold T]
+// [--compare] [--render out.png] [--bf-eps E] [--min-area A]`: solves a scene with the
+// hierarchical Galerkin radiosity solver and prints one JSON object on stdout (options
+// echoed, kernel evaluations, links by class, elements, iterations, time, and every patch's
+// mean radiosity; with --compare, the same scene solved with fixed rules and the relative L2
+// difference of the two solutions); progress goes to stderr.
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -24,6 +27,8 @@ struct SolveCommandOptions {
   std::string scene;
   int degree = 0;
   std::string rules = "fixed";
+  double threshold = kDefaultErrThres;
+  bool compare = false;
   std::string renderPath;
   double bfEpsilon = SolverOptions{}.bfEpsilon;
   double minArea = SolverOptions{}.minArea;
@@ -39,12 +44,22 @@ nlohmann::json vectorJson(const Eigen::Vector3d& v) {
   return {v.x(), v.y(), v.z()};
 }
 
+RuleChoice parseRuleChoice(const std::string& name) {
+  for (RuleChoice choice :
+       {RuleChoice::kFixed, RuleChoice::kAdaptive, RuleChoice::kAdaptiveNoVisibility}) {
+    if (name == ruleChoiceName(choice)) return choice;
+  }
+  throw InputError("--rules " + name +
+                   ": unknown rule choice (valid: fixed, adaptive, adaptive-novis)");
+}
+
 void runSolve(const SolveCommandOptions& command) {
   if (command.degree < 0 || command.degree > 3) {
     throw InputError("--degree " + std::to_string(command.degree) + ": must be 0, 1, 2 or 3");
   }
-  if (command.rules != "fixed") {
-    throw InputError("--rules " + command.rules + ": unknown rule choice (valid: fixed)");
+  const RuleChoice rules = parseRuleChoice(command.rules);
+  if (!(command.threshold >= 0.0) || !std::isfinite(command.threshold)) {
+    throw InputError("--threshold: must be a finite number >= 0");
   }
   if (!(command.bfEpsilon > 0.0)) throw InputError("--bf-eps: must be > 0");
   if (!(command.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
@@ -58,7 +73,8 @@ void runSolve(const SolveCommandOptions& command) {
   }
   SolverOptions options;
   options.degree = command.degree;
-  options.rules = RuleChoice::kFixed;
+  options.rules = rules;
+  options.errThres = command.threshold;
   options.bfEpsilon = command.bfEpsilon;
   options.minArea = command.minArea;
   options.partialFactor = command.partialFactor;
@@ -75,6 +91,10 @@ void runSolve(const SolveCommandOptions& command) {
                    static_cast<unsigned long long>(progress.kernelEvaluations), progress.change,
                    progress.elapsedSeconds);
     };
+  }
+  if (!command.quiet) {
+    std::fprintf(stderr, "radquad solve: %s, degree %d, %s rules\n", command.scene.c_str(),
+                 command.degree, ruleChoiceName(rules));
   }
   Solver solver(scene, options);
   solver.solve();
@@ -93,6 +113,7 @@ void runSolve(const SolveCommandOptions& command) {
       {"options",
        {{"degree", command.degree},
         {"rules", command.rules},
+        {"threshold", options.errThres},
         {"bf_eps", options.bfEpsilon},
         {"min_area", solver.minArea()},
         {"partial_factor", options.partialFactor},
@@ -103,6 +124,7 @@ void runSolve(const SolveCommandOptions& command) {
       {"kernel_evaluations", statistics.kernelEvaluations},
       {"coupling_computations", statistics.couplingComputations},
       {"recomputations", statistics.recomputations},
+      {"recomputation_kernel_evaluations", statistics.recomputationEvaluations},
       {"links",
        {{"unoccluded", statistics.unoccludedLinks},
         {"partial", statistics.partialLinks},
@@ -116,12 +138,27 @@ void runSolve(const SolveCommandOptions& command) {
       {"converged", statistics.converged},
       {"final_change", statistics.finalChange},
       {"elapsed_seconds", statistics.elapsedSeconds},
+      {"coupling_seconds", statistics.couplingSeconds},
       {"kernel_evaluations_per_second",
        statistics.elapsedSeconds > 0.0
            ? double(statistics.kernelEvaluations) / statistics.elapsedSeconds
            : 0.0},
       {"patches", patches},
   };
+  if (command.compare) {
+    if (!command.quiet) std::fprintf(stderr, "radquad solve: the same scene with fixed rules\n");
+    SolverOptions fixedOptions = options;
+    fixedOptions.rules = RuleChoice::kFixed;
+    Solver fixed(scene, fixedOptions);
+    fixed.solve();
+    const auto [difference, norm] = hierarchy.l2Difference(fixed.hierarchy());
+    out["comparison"] = {
+        {"fixed_kernel_evaluations", fixed.statistics().kernelEvaluations},
+        {"fixed_elapsed_seconds", fixed.statistics().elapsedSeconds},
+        {"fixed_coupling_seconds", fixed.statistics().couplingSeconds},
+        {"relative_l2_difference", norm > 0.0 ? difference / norm : 0.0},
+    };
+  }
   if (!command.renderPath.empty()) {
     const Camera camera = scene.camera ? *scene.camera : defaultCamera(scene);
     writeFileAtomically(command.renderPath, encodePng(renderRadiosity(hierarchy, camera)));
@@ -142,8 +179,17 @@ void addSolveCommand(CLI::App& app) {
       ->required();
   command->add_option("--degree", options->degree, "Basis degree d, 0..3")->capture_default_str();
   command
-      ->add_option("--rules", options->rules, "Gauss rule choice per link: fixed ((d+1)^4 points)")
+      ->add_option("--rules", options->rules,
+                   "Gauss rule choice per link: fixed ((d+1)^4 points), adaptive (Gershbein 1995, "
+                   "Figure 4), adaptive-novis (without the partial-visibility point)")
       ->capture_default_str();
+  command
+      ->add_option("--threshold", options->threshold,
+                   "ErrThres of the adaptive rules, as a fraction of the scene's emitted "
+                   "radiosity (emitted power over total area)")
+      ->capture_default_str();
+  command->add_flag("--compare", options->compare,
+                    "Also solve with fixed rules and report the relative L2 difference");
   command->add_option("--render", options->renderPath,
                       "Write a PNG of the solution from the scene's camera");
   command

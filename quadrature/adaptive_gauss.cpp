@@ -1,0 +1,67 @@
+#include "quadrature/adaptive_gauss.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "quadrature/random/philox.h"
+
+namespace radquad {
+
+void axisMagnitudes(int degree, const double* magnitudes, double* alongU, double* alongV) {
+  const int n = degree + 1;
+  std::fill(alongU, alongU + n, 0.0);
+  std::fill(alongV, alongV + n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double magnitude = std::abs(magnitudes[i * n + j]);
+      alongU[i] = std::max(alongU[i], magnitude);
+      alongV[j] = std::max(alongV[j], magnitude);
+    }
+  }
+}
+
+int pointsForAxis(const double* orderMagnitudes, int orders, double errThres) {
+  // Figure 4's loop: the last (highest) order above the threshold wins.
+  int highest = 0;
+  for (int order = 0; order < orders; ++order) {
+    if (orderMagnitudes[order] > errThres) highest = order;
+  }
+  return highest + 1;
+}
+
+GaussRuleChoice chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input) {
+  assert(input.degree >= 0 && input.degree <= kMaxAdaptiveDegree);
+  assert(input.magnitudes != nullptr);
+  double alongU[kMaxAdaptiveDegree + 1], alongV[kMaxAdaptiveDegree + 1];
+  axisMagnitudes(input.degree, input.magnitudes, alongU, alongV);
+  const int full = input.degree + 1;
+  return {full, full, pointsForAxis(alongU, full, input.errThres),
+          pointsForAxis(alongV, full, input.errThres)};
+}
+
+GaussRuleChoice chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator) {
+  GaussRuleChoice rule = chooseGaussRulesNoVisibility(input);
+  if (!input.partiallyOccluded) return rule;
+  // "RandomlyIncreaseAnAxis(Src)": only an axis below the full d+1 points can grow.
+  const int full = input.degree + 1;
+  const bool uCanGrow = rule[2] < full, vCanGrow = rule[3] < full;
+  if (uCanGrow && vCanGrow) {
+    ++rule[generator.bounded(2) == 0 ? 2 : 3];
+  } else if (uCanGrow) {
+    ++rule[2];
+  } else if (vCanGrow) {
+    ++rule[3];
+  }
+  return rule;
+}
+
+std::uint64_t linkSeed(std::uint64_t baseSeed, std::uint32_t receiver, std::uint32_t source) {
+  std::uint64_t z = baseSeed ^ ((std::uint64_t(receiver) << 32) | source);
+  z += 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace radquad

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# `radquad solve --rules adaptive --compare` through the real binary on a small scene: exit 0,
+# the comparison fields, a small difference from the fixed solution, fewer kernel
+# evaluations; bad rule options exit with status 2 and say which option.
+# Usage: RADQUAD=PATH/TO/radquad adaptive_cli_test.sh (or the path as the first argument)
+set -u
+radquad="${RADQUAD:-${1:-}}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+expect_status() {  # expected-status description expected-stderr-text args...
+  local expected="$1" description="$2" text="$3"
+  shift 3
+  "$radquad" "$@" >"$work/out" 2>"$work/err"
+  local status=$?
+  if [[ $status -ne $expected ]]; then
+    echo "FAIL: $description: exit status $status, expected $expected"; cat "$work/err"
+    failures=$((failures + 1))
+  elif [[ -n "$text" ]] && ! grep -q -- "$text" "$work/err"; then
+    echo "FAIL: $description: stderr lacks '$text'"; cat "$work/err"
+    failures=$((failures + 1))
+  fi
+}
+
+# Two opposed unit squares, a black emitter and a grey receiver, and a small blocker between.
+cat >"$work/squares.json" <<'JSON'
+{"patches": [
+  {"name": "emitter", "origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0],
+   "reflectance": [0,0,0], "emission": [1,1,1]},
+  {"name": "receiver", "origin": [0,0,1], "edge_u": [0,1,0], "edge_v": [1,0,0],
+   "reflectance": [0.6,0.6,0.6]},
+  {"name": "blocker", "origin": [0.3,0.3,0.5], "edge_u": [0,0.3,0], "edge_v": [0.3,0,0],
+   "reflectance": [0.5,0.5,0.5]}]}
+JSON
+
+expect_status 2 "negative threshold" "--threshold" solve "$work/squares.json" --rules adaptive --threshold -1
+expect_status 2 "unknown rule choice" "adaptive-novis" solve "$work/squares.json" --rules adaptiv
+
+for rules in adaptive adaptive-novis; do
+  expect_status 0 "$rules --compare" "" solve "$work/squares.json" --degree 2 --rules "$rules" \
+    --compare --bf-eps 0.05 --quiet
+  if ! /usr/bin/python3 - "$work/out" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+c = out["comparison"]
+assert out["options"]["rules"] in ("adaptive", "adaptive-novis"), out["options"]
+assert set(c) >= {"fixed_kernel_evaluations", "fixed_elapsed_seconds", "relative_l2_difference"}
+assert 0 <= c["relative_l2_difference"] < 0.01, c
+assert out["kernel_evaluations"] < c["fixed_kernel_evaluations"], (out["kernel_evaluations"], c)
+PY
+  then
+    echo "FAIL: $rules --compare output"; failures=$((failures + 1))
+  fi
+done
+
+if [[ $failures -ne 0 ]]; then
+  echo "$failures failure(s)"; exit 1
+fi
+echo "adaptive CLI checks passed"

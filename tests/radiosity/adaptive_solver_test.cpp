@@ -1,0 +1,108 @@
+// The adaptive Gauss rules (Gershbein 1995, Figure 4) inside the solver: with every
+// coefficient significant they are the fixed rules; a constant black emitter is integrated
+// with one source point; the result does not depend on the thread count.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "radiosity/solver.h"
+#include "tests/radiosity/scenes_for_tests.h"
+
+namespace radquad {
+namespace {
+
+SolverOptions optionsFor(int degree, RuleChoice rules, double threshold, double bfEpsilon) {
+  SolverOptions options;
+  options.degree = degree;
+  options.rules = rules;
+  options.errThres = threshold;
+  options.bfEpsilon = bfEpsilon;
+  return options;
+}
+
+// A negative ErrThres makes every order significant (|B| >= 0 > ErrThres), so Figure 4 picks
+// d+1 points on every axis and no partial-visibility point is left to add: the fixed rules,
+// hence the same couplings, the same refinement and the same solution.
+TEST(AdaptiveSolverTest, EverythingSignificantIsTheFixedRule) {
+  const Scene scene = *builtinScene("slats");
+  for (RuleChoice choice : {RuleChoice::kAdaptive, RuleChoice::kAdaptiveNoVisibility}) {
+    Solver fixed(scene, optionsFor(2, RuleChoice::kFixed, 0.0, 0.5));
+    fixed.solve();
+    Solver adaptive(scene, optionsFor(2, choice, -1.0, 0.5));
+    adaptive.solve();
+    EXPECT_EQ(adaptive.statistics().kernelEvaluations, fixed.statistics().kernelEvaluations);
+    EXPECT_EQ(adaptive.statistics().recomputations, 0u);
+    const auto [difference, norm] = adaptive.hierarchy().l2Difference(fixed.hierarchy());
+    EXPECT_GT(norm, 0.0);
+    EXPECT_EQ(difference, 0.0);
+  }
+}
+
+// The black emitter of the opposed squares keeps B = E (constant: rho = 0; its higher
+// coefficients are zero up to rounding in the two-scale push), so every link it sends along
+// has a one-point source rule for any ErrThres above rounding; its
+// receiver's mean radiosity is still rho F, F the closed-form form factor, within 1%.
+TEST(AdaptiveSolverTest, ConstantEmitterGetsOneSourcePoint) {
+  const double rho = 0.6;
+  const Scene scene = testing::opposedSquaresScene(rho);
+  for (int degree : {1, 2, 3}) {
+    Solver solver(scene, optionsFor(degree, RuleChoice::kAdaptive, 1e-9, 0.01));
+    solver.solve();
+    int fromEmitter = 0;
+    for (const SolverLink& link : solver.links()) {
+      if (!link.active || solver.hierarchy()[link.source].patch != 0) continue;
+      ++fromEmitter;
+      EXPECT_EQ(link.rule, (std::array<int, 4>{degree + 1, degree + 1, 1, 1}));
+    }
+    EXPECT_GT(fromEmitter, 0);
+    const double mean = solver.hierarchy()[1].meanRadiosity()[0];
+    EXPECT_NEAR(mean, rho * testing::kOpposedUnitSquaresFormFactor,
+                0.01 * rho * testing::kOpposedUnitSquaresFormFactor)
+        << "degree " << degree;
+  }
+}
+
+// Rules are drawn with a generator keyed by the link's element ids and chosen from the
+// previous iteration's radiosity: one thread or two give the same solve, bit for bit.
+TEST(AdaptiveSolverTest, ResultDoesNotDependOnTheThreadCount) {
+  const Scene scene = *builtinScene("slats");
+  std::vector<std::uint64_t> evaluations;
+  std::vector<std::unique_ptr<Solver>> solvers;
+  for (std::size_t threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    solvers.push_back(
+        std::make_unique<Solver>(scene, optionsFor(2, RuleChoice::kAdaptive, 0.1, 0.5)));
+    solvers.back()->solve();
+  }
+  EXPECT_EQ(solvers[0]->statistics().kernelEvaluations, solvers[1]->statistics().kernelEvaluations);
+  EXPECT_EQ(solvers[0]->statistics().recomputations, solvers[1]->statistics().recomputations);
+  EXPECT_EQ(solvers[0]->hierarchy().l2Difference(solvers[1]->hierarchy()).first, 0.0);
+  ASSERT_EQ(solvers[0]->links().size(), solvers[1]->links().size());
+  for (std::size_t k = 0; k < solvers[0]->links().size(); ++k) {
+    EXPECT_EQ(solvers[0]->links()[k].rule, solvers[1]->links()[k].rule) << "link " << k;
+  }
+}
+
+// A link's rule never shrinks, and every partially occluded link of `adaptive` whose rule
+// is not full got its extra point: its source rule has at least 2 points on some axis.
+TEST(AdaptiveSolverTest, PartialLinksGetTheExtraSourcePoint) {
+  const Scene scene = *builtinScene("slats");
+  Solver solver(scene, optionsFor(3, RuleChoice::kAdaptive, 1e6, 0.5));
+  solver.solve();
+  int partial = 0;
+  for (const SolverLink& link : solver.links()) {
+    if (!link.active || !link.computed) continue;
+    EXPECT_EQ(link.rule[0], 4);
+    EXPECT_EQ(link.rule[1], 4);
+    // ErrThres is so large that no coefficient is significant: 1 x 1, plus one on partial.
+    if (link.visibility == LinkClass::kPartial) {
+      ++partial;
+      EXPECT_EQ(link.rule[2] + link.rule[3], 3);
+    } else {
+      EXPECT_EQ(link.rule[2] + link.rule[3], 2);
+    }
+  }
+  EXPECT_GT(partial, 0);
+}
+
+}  // namespace
+}  // namespace radquad
