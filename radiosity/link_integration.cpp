@@ -68,17 +68,24 @@ void integrateLink(const Link& link, const std::array<int, 4>& rule, const Gauss
     result.raysCast += integral.raysCast;
     return;
   }
+  // K = sum_cr T_cr^T (sum_cs K_(cr,cs) T_cs), with coefficient-wise products (the
+  // matrices are at most 16 x 16: the blocked product's packing would cost more).
   Eigen::MatrixXd total = Eigen::MatrixXd::Zero(functions, functions);
+  Eigen::MatrixXd inner(functions, functions);
   LinkIntegrationResult piece;
   for (int cr = 0; cr < 4; ++cr) {
     const Patch receiver = quadrant(link.receiver, cr);
+    inner.setZero();
+    bool any = false;
     for (int cs = 0; cs < 4; ++cs) {
       const Patch source = quadrant(link.source, cs);
       if (!mayExchange(receiver, source)) continue;
       const Link sub{receiver, source, link.occluders};
       integrateLink(sub, rule, tables, twoScale, depth - 1, accumulator, piece);
-      total.noalias() += twoScale.child(cr).transpose() * piece.coupling * twoScale.child(cs);
+      inner.noalias() += piece.coupling.lazyProduct(twoScale.child(cs));
+      any = true;
     }
+    if (any) total.noalias() += twoScale.child(cr).transpose().lazyProduct(inner);
   }
   result.coupling = std::move(total);
   result.kernelEvaluations += piece.kernelEvaluations;

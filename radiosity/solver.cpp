@@ -276,7 +276,9 @@ void Solver::gather() {
     for (int index : element.links) {
       const SolverLink& link = links_[std::size_t(index)];
       if (!link.computed) continue;  // its source had no radiosity yet
-      element.gathered.noalias() += link.coupling * (*hierarchy_)[link.source].radiosity;
+      // A coefficient-wise product: these matrices are at most 16 x 16 times 16 x 3, too
+      // small for the blocked matrix product's packing and allocations.
+      element.gathered.noalias() += link.coupling.lazyProduct((*hierarchy_)[link.source].radiosity);
     }
   });
 }
