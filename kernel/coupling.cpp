@@ -150,6 +150,31 @@ double unoccludedKernel(const Patch& receiver, const Eigen::Vector3d& x, const P
          std::numbers::pi;
 }
 
+void CouplingAccumulator::stageRays(std::size_t count) {
+  for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_, &rayDirectionY_,
+                       &rayDirectionZ_, &rayFar_}) {
+    column->resize(count);
+  }
+}
+
+void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
+                                          LinkIntegral& result) {
+  segments_.assign(count, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
+                   rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
+  link.occluders->trace(segments_);
+  segments_.farEnds(rayFar_.data());
+  std::uint64_t blocked = 0;
+  const float* __restrict far = rayFar_.data();
+  double* __restrict kernel = kernel_.data();
+  for (std::size_t k = 0; k < count; ++k) {
+    const bool visible = far[k] >= 0.0f;
+    kernel[k] = visible ? kernel[k] : 0.0;
+    blocked += visible ? 0 : 1;
+  }
+  result.raysCast = count;
+  result.raysBlocked = blocked;
+}
+
 void CouplingAccumulator::castRays(const Link& link, std::vector<double>& kernel,
                                    LinkIntegral& result) {
   link.occluders->trace(segments_);
@@ -281,10 +306,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
     if (positive == pairs) {
       // Every pair faces the other (the usual case): one ray per pair in pair order, filled
       // and applied without branches.
-      for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_,
-                           &rayDirectionY_, &rayDirectionZ_, &rayFar_}) {
-        column->resize(pairs);
-      }
+      stageRays(pairs);
       for (std::size_t i = 0; i < nr; ++i) {
         const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
         float* __restrict ox = rayOriginX_.data() + i * ns;
@@ -302,20 +324,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
           dz[j] = float(sourceZ_[j] - zi);
         }
       }
-      segments_.assign(pairs, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
-                       rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
-      link.occluders->trace(segments_);
-      segments_.farEnds(rayFar_.data());
-      std::uint64_t blocked = 0;
-      const float* __restrict far = rayFar_.data();
-      double* __restrict kernel = kernel_.data();
-      for (std::size_t k = 0; k < pairs; ++k) {
-        const bool visible = far[k] >= 0.0f;
-        kernel[k] = visible ? kernel[k] : 0.0;
-        blocked += visible ? 0 : 1;
-      }
-      result.raysCast = pairs;
-      result.raysBlocked = blocked;
+      traceStagedRays(link, pairs, result);
     } else {
       segments_.resize(positive);
       rayPairs_.resize(positive);
@@ -363,7 +372,23 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
   }
   result.raysCast = 0;
   result.raysBlocked = 0;
+  std::size_t positive = 0;
   if (link.hasOccluders()) {
+    for (std::size_t k = 0; k < count; ++k) positive += kernel_[k] > 0.0 ? 1 : 0;
+  }
+  if (link.hasOccluders() && positive == count) {
+    // Every pair faces the other: one ray per point, staged and applied without branches.
+    stageRays(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      rayOriginX_[k] = float(receiverX_[k]);
+      rayOriginY_[k] = float(receiverY_[k]);
+      rayOriginZ_[k] = float(receiverZ_[k]);
+      rayDirectionX_[k] = float(sourceX_[k] - receiverX_[k]);
+      rayDirectionY_[k] = float(sourceY_[k] - receiverY_[k]);
+      rayDirectionZ_[k] = float(sourceZ_[k] - receiverZ_[k]);
+    }
+    traceStagedRays(link, count, result);
+  } else if (link.hasOccluders()) {
     segments_.resize(count);
     rayPairs_.resize(count);
     std::size_t rays = 0;

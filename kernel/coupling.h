@@ -73,6 +73,10 @@ class CouplingAccumulator {
 
  private:
   void castRays(const Link& link, std::vector<double>& kernel, LinkIntegral& result);
+  // Sizes the staging columns for `count` rays; traceStagedRays traces them (ray k belongs to
+  // kernel value k) and zeroes the kernel where they are blocked.
+  void stageRays(std::size_t count);
+  void traceStagedRays(const Link& link, std::size_t count, LinkIntegral& result);
 
   std::vector<double> receiverX_, receiverY_, receiverZ_, receiverNormalDot_, receiverSourceDot_;
   std::vector<double> sourceX_, sourceY_, sourceZ_, sourceNormalDot_, sourceReceiverDot_;

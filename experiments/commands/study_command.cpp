@@ -1,5 +1,5 @@
 // `radquad study CONFIG.json --out FILE.json [--gold] [--quiet]`: scores the config's rules on
-// its generated links and writes the error table of Figure 1 or 2 (docs/study.md).
+// its generated links and writes the error table of Figure 1 or 2 (README.md, "The study").
 #include <memory>
 #include <string>
 

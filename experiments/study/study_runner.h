@@ -69,7 +69,7 @@ struct StudyRun {
 // Throws InputError when a class cannot be filled within max_candidates_per_link.
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options);
 
-// The error table (the JSON contract of docs/study.md), without `git_commit` and
+// The error table (the JSON contract of README.md, "The study"), without `git_commit` and
 // `elapsed_seconds`, which the caller adds.
 nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options,
                           const StudyRun& run);

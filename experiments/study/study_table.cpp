@@ -1,4 +1,4 @@
-// The error tables of Figures 1 and 2 (field meanings: docs/study.md).
+// The error tables of Figures 1 and 2 (field meanings: README.md, "The study").
 #include <cmath>
 #include <map>
 
