@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -172,6 +173,33 @@ void OccluderScene::testSegments(const SegmentBatch& segments, std::uint8_t* vis
   SegmentBatch traced = segments;
   trace(traced);
   for (std::size_t k = 0; k < traced.size(); ++k) visible[k] = traced.visible(k) ? 1 : 0;
+}
+
+int OccluderScene::closestHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                              double& t) const {
+  assert(committed_ || empty());
+  if (empty()) return -1;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit hit;
+  hit.ray.org_x = float(origin.x());
+  hit.ray.org_y = float(origin.y());
+  hit.ray.org_z = float(origin.z());
+  hit.ray.dir_x = float(direction.x());
+  hit.ray.dir_y = float(direction.y());
+  hit.ray.dir_z = float(direction.z());
+  hit.ray.tnear = 0.0f;
+  hit.ray.tfar = std::numeric_limits<float>::infinity();
+  hit.ray.time = 0.0f;
+  hit.ray.mask = 0xFFFFFFFFu;
+  hit.ray.id = 0;
+  hit.ray.flags = 0;
+  hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &hit);
+  if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
+  t = hit.ray.tfar;
+  return int(hit.hit.geomID);
 }
 
 bool OccluderScene::segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {

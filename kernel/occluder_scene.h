@@ -87,6 +87,10 @@ class OccluderScene {
   void testSegments(const SegmentBatch& segments, std::uint8_t* visible) const;
   bool segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
 
+  // The geometry hit first by the ray origin + t direction, t > 0, and that t; -1 when the
+  // ray hits nothing. Geometry ids count from 0 in the order of the add calls.
+  int closestHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double& t) const;
+
  private:
   RTCScene scene_ = nullptr;
   std::size_t geometryCount_ = 0;

@@ -1,6 +1,5 @@
 #include "radiosity/render.h"
 
-#include <embree3/rtcore.h>
 #include <stb_image_write.h>
 #include <tbb/parallel_for.h>
 
@@ -8,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "kernel/occluder_scene.h"
@@ -15,65 +15,13 @@
 namespace radquad {
 namespace {
 
-// An Embree scene of all patches with geometry id = patch index, for closest hits.
-class PrimaryScene {
- public:
-  explicit PrimaryScene(const Scene& scene) {
-    scene_ = rtcNewScene(embreeDevice());
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    for (std::size_t p = 0; p < scene.patches.size(); ++p) {
-      const Patch& patch = scene.patches[p].patch;
-      RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_QUAD);
-      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-      const Eigen::Vector3d corners[4] = {patch.origin, patch.origin + patch.edgeU,
-                                          patch.origin + patch.edgeU + patch.edgeV,
-                                          patch.origin + patch.edgeV};
-      for (int c = 0; c < 4; ++c) {
-        for (int axis = 0; axis < 3; ++axis) vertices[3 * c + axis] = float(corners[c][axis]);
-      }
-      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
-      for (unsigned c = 0; c < 4; ++c) indices[c] = c;
-      rtcCommitGeometry(geometry);
-      rtcAttachGeometryByID(scene_, geometry, unsigned(p));
-      rtcReleaseGeometry(geometry);
-    }
-    rtcCommitScene(scene_);
-  }
-  ~PrimaryScene() { rtcReleaseScene(scene_); }
-  PrimaryScene(const PrimaryScene&) = delete;
-  PrimaryScene& operator=(const PrimaryScene&) = delete;
-
-  // The patch hit first and the distance along `direction` (unit), or -1.
-  int intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                double& distance) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit hit;
-    hit.ray.org_x = float(origin.x());
-    hit.ray.org_y = float(origin.y());
-    hit.ray.org_z = float(origin.z());
-    hit.ray.dir_x = float(direction.x());
-    hit.ray.dir_y = float(direction.y());
-    hit.ray.dir_z = float(direction.z());
-    hit.ray.tnear = 0.0f;
-    hit.ray.tfar = std::numeric_limits<float>::infinity();
-    hit.ray.time = 0.0f;
-    hit.ray.mask = 0xFFFFFFFFu;
-    hit.ray.id = 0;
-    hit.ray.flags = 0;
-    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &hit);
-    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return -1;
-    distance = hit.ray.tfar;
-    return int(hit.hit.geomID);
-  }
-
- private:
-  RTCScene scene_ = nullptr;
-};
+// An Embree scene of all patches; geometry id = patch index (ids count from 0 in add order).
+std::unique_ptr<OccluderScene> primaryScene(const Scene& scene) {
+  auto primary = std::make_unique<OccluderScene>();
+  for (const ScenePatch& patch : scene.patches) primary->addParallelogram(patch.patch);
+  primary->commit();
+  return primary;
+}
 
 // (u, v) of a point of the patch's plane: the least-squares solution of
 // u edgeU + v edgeV = point - origin, clamped to the unit square.
@@ -95,7 +43,7 @@ void appendBytes(void* context, void* data, int size) {
 
 RadianceImage renderRadiosity(const Hierarchy& hierarchy, const Camera& camera) {
   const Scene& scene = hierarchy.scene();
-  const PrimaryScene primary(scene);
+  const std::unique_ptr<OccluderScene> primary = primaryScene(scene);
   RadianceImage image;
   image.width = camera.width;
   image.height = camera.height;
@@ -111,7 +59,7 @@ RadianceImage renderRadiosity(const Hierarchy& hierarchy, const Camera& camera) 
       const double py = (1.0 - 2.0 * (y + 0.5) / camera.height) * tanHalf;
       const Eigen::Vector3d direction = (forward + px * right + py * up).normalized();
       double distance = 0.0;
-      const int p = primary.intersect(camera.eye, direction, distance);
+      const int p = primary->closestHit(camera.eye, direction, distance);
       if (p < 0) continue;
       const Patch& patch = scene.patches[std::size_t(p)].patch;
       if (patch.normal.dot(direction) >= 0.0) continue;  // the back of a one-sided patch

@@ -4,24 +4,7 @@
 # evaluations; bad rule options exit with status 2 and say which option.
 # Usage: RADQUAD=PATH/TO/radquad adaptive_cli_test.sh (or the path as the first argument)
 set -u
-radquad="${RADQUAD:-${1:-}}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect_status() {  # expected-status description expected-stderr-text args...
-  local expected="$1" description="$2" text="$3"
-  shift 3
-  "$radquad" "$@" >"$work/out" 2>"$work/err"
-  local status=$?
-  if [[ $status -ne $expected ]]; then
-    echo "FAIL: $description: exit status $status, expected $expected"; cat "$work/err"
-    failures=$((failures + 1))
-  elif [[ -n "$text" ]] && ! grep -q -- "$text" "$work/err"; then
-    echo "FAIL: $description: stderr lacks '$text'"; cat "$work/err"
-    failures=$((failures + 1))
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect_status.sh"
 
 # Two opposed unit squares, a black emitter and a grey receiver, and a small blocker between.
 cat >"$work/squares.json" <<'JSON'

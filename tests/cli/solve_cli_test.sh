@@ -3,24 +3,7 @@
 # names the patch; a good scene exits 0 with the documented JSON fields.
 # Usage: RADQUAD=PATH/TO/radquad solve_cli_test.sh (or the path as the first argument)
 set -u
-radquad="${RADQUAD:-${1:-}}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect_status() {  # expected-status description expected-stderr-text args...
-  local expected="$1" description="$2" text="$3"
-  shift 3
-  "$radquad" "$@" >"$work/out" 2>"$work/err"
-  local status=$?
-  if [[ $status -ne $expected ]]; then
-    echo "FAIL: $description: exit status $status, expected $expected"; cat "$work/err"
-    failures=$((failures + 1))
-  elif [[ -n "$text" ]] && ! grep -q -- "$text" "$work/err"; then
-    echo "FAIL: $description: stderr lacks '$text'"; cat "$work/err"
-    failures=$((failures + 1))
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/expect_status.sh"
 
 square='"origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0]'
 printf '{"patches": [{%s, "reflectance": [0.5,0.5,0.5]' "$square" >"$work/truncated.json"

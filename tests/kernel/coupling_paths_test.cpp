@@ -1,26 +1,19 @@
 // The two coupling paths are independent implementations of the same sum: a product rule's
 // points, flattened into a 4D list, must give the same coupling through the scattered path
 // (the register-tiled contraction for degrees 1..3, a general matrix product above) as
-// through the product path, with and without occluders.
+// through the product path (which contracts source-last when the source has fewer points
+// than the receiver, as the adaptive rules choose), with and without occluders.
 #include <gtest/gtest.h>
 
 #include "kernel/coupling.h"
 #include "quadrature/registry.h"
 #include "tests/kernel/test_links.h"
+#include "tests/support/flatten_samples.h"
 
 namespace radquad {
 namespace {
 
-LinkSamples flatten(const RuleSamples& samples) {
-  LinkSamples flat;
-  for (std::size_t i = 0; i < samples.receiver.size(); ++i) {
-    for (std::size_t j = 0; j < samples.source.size(); ++j) {
-      flat.push(samples.receiver.u[i], samples.receiver.v[i], samples.source.u[j],
-                samples.source.v[j], samples.receiver.weight[i] * samples.source.weight[j]);
-    }
-  }
-  return flat;
-}
+using testing::flattenSamples;
 
 TEST(CouplingPaths, ScatteredEqualsProductOnTheSamePoints) {
   OccluderScene scene;
@@ -28,26 +21,31 @@ TEST(CouplingPaths, ScatteredEqualsProductOnTheSamePoints) {
   scene.commit();
   const Patch receiver = Patch::make({0, 0, 0}, {1.2, 0, 0.1}, {0, 0.8, 0}, "receiver");
   const Patch source = testing::opposedSource(1, 1, 1.1);
-  // 5x3 x 4x7 = 420 points: not a multiple of the 8-lane vectors or the 256-point blocks.
-  const RuleSamples samples = findRule("Gauss:5x3x4x7")->samples(0);
-  const LinkSamples flat = flatten(samples);
   CouplingAccumulator accumulator;
   const OccluderScene* none = nullptr;
-  for (const OccluderScene* occluders : {none, static_cast<const OccluderScene*>(&scene)}) {
-    const Link link{receiver, source, occluders};
-    for (int degree = 0; degree <= 5; ++degree) {
-      const WeightedBasisTable receiverBasis = makeWeightedBasisTable(samples.receiver, degree);
-      const WeightedBasisTable sourceBasis = makeWeightedBasisTable(samples.source, degree);
-      LinkIntegral product, scattered;
-      accumulator.product(link, samples.receiver, receiverBasis, samples.source, sourceBasis,
-                          product);
-      accumulator.scattered(link, flat, degree, scattered);
-      ASSERT_EQ(product.coupling.rows(), scattered.coupling.rows());
-      const double scale = product.coupling.cwiseAbs().maxCoeff();
-      EXPECT_LT((product.coupling - scattered.coupling).cwiseAbs().maxCoeff(), 1e-13 * scale)
-          << "degree " << degree << (occluders ? " occluded" : " unoccluded");
-      EXPECT_EQ(product.raysBlocked, scattered.raysBlocked) << "degree " << degree;
-      EXPECT_EQ(product.kernelEvaluations, scattered.kernelEvaluations);
+  // 5x3 x 4x7 = 420 points: not a multiple of the 8-lane vectors or the 256-point blocks;
+  // the others have fewer source than receiver points.
+  for (const char* name :
+       {"Gauss:5x3x4x7", "Gauss:4x4x1x1", "Gauss:4x4x2x1", "Gauss:3x3x1x3", "Gauss:2x2x1x1"}) {
+    const RuleSamples samples = findRule(name)->samples(0);
+    const LinkSamples flat = flattenSamples(samples);
+    for (const OccluderScene* occluders : {none, static_cast<const OccluderScene*>(&scene)}) {
+      const Link link{receiver, source, occluders};
+      for (int degree = 0; degree <= 5; ++degree) {
+        const WeightedBasisTable receiverBasis = makeWeightedBasisTable(samples.receiver, degree);
+        const WeightedBasisTable sourceBasis = makeWeightedBasisTable(samples.source, degree);
+        LinkIntegral product, scattered;
+        accumulator.product(link, samples.receiver, receiverBasis, samples.source, sourceBasis,
+                            product);
+        accumulator.scattered(link, flat, degree, scattered);
+        ASSERT_EQ(product.coupling.rows(), scattered.coupling.rows());
+        const double scale = product.coupling.cwiseAbs().maxCoeff();
+        ASSERT_GT(scale, 0.0) << name;
+        EXPECT_LT((product.coupling - scattered.coupling).cwiseAbs().maxCoeff(), 1e-13 * scale)
+            << name << " degree " << degree << (occluders ? " occluded" : " unoccluded");
+        EXPECT_EQ(product.raysBlocked, scattered.raysBlocked) << name << " degree " << degree;
+        EXPECT_EQ(product.kernelEvaluations, scattered.kernelEvaluations) << name;
+      }
     }
   }
 }

@@ -12,6 +12,7 @@
 
 #include "quadrature/registry.h"
 #include "tests/quadrature/legendre_reference.h"
+#include "tests/support/flatten_samples.h"
 
 namespace radquad {
 namespace {
@@ -27,19 +28,6 @@ std::vector<std::string> deterministicRuleNames() {
   for (const char* name : {"Gauss:1x2x3x4", "Gauss:4x4x2x5", "Gauss:5x5x5x5"})
     names.push_back(name);
   return names;
-}
-
-// The rule's points as a flat 4D list with weights.
-LinkSamples flatten(const RuleSamples& samples) {
-  if (!samples.isProduct) return samples.points;
-  LinkSamples flat;
-  for (std::size_t i = 0; i < samples.receiver.size(); ++i) {
-    for (std::size_t j = 0; j < samples.source.size(); ++j) {
-      flat.push(samples.receiver.u[i], samples.receiver.v[i], samples.source.u[j],
-                samples.source.v[j], samples.receiver.weight[i] * samples.source.weight[j]);
-    }
-  }
-  return flat;
 }
 
 // Largest error over the tensor Legendre polynomials of total degree exactly `degree`.
@@ -67,7 +55,7 @@ TEST_P(RuleExactness, ExactToExactlyTheDeclaredDegree) {
   const auto rule = findRule(GetParam());
   ASSERT_TRUE(rule->degree().has_value()) << rule->toString();
   const int declared = *rule->degree();
-  const LinkSamples points = flatten(rule->samples(0));
+  const LinkSamples points = testing::flattenSamples(rule->samples(0));
   ASSERT_EQ(points.size(), rule->sampleCount()) << rule->toString();
   double weightSum = 0.0;
   for (double w : points.weight) weightSum += w;
