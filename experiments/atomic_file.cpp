@@ -52,4 +52,12 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& c
   }
 }
 
+void createOutputDirectory(const std::filesystem::path& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    throw InputError(directory.string() + ": cannot create the folder (" + error.message() + ")");
+  }
+}
+
 }  // namespace radquad

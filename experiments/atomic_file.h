@@ -11,4 +11,7 @@ namespace radquad {
 // Throws InputError naming the path when it cannot be written.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
 
+// Creates an output folder and its parents; throws InputError naming it when that fails.
+void createOutputDirectory(const std::filesystem::path& directory);
+
 }  // namespace radquad

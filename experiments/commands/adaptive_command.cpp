@@ -54,8 +54,8 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
       command.resultsDir.empty() ? root / "results" : std::filesystem::path(command.resultsDir);
   const std::filesystem::path plots =
       command.plotsDir.empty() ? root / "plots" : std::filesystem::path(command.plotsDir);
-  std::filesystem::create_directories(results / "plate1");
-  std::filesystem::create_directories(plots);
+  createOutputDirectory(results / "plate1");
+  createOutputDirectory(plots);
 
   nlohmann::json out = runAdaptiveExperiments(command.runs, results / "plate1");
   out["commit"] = gitCommit();

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/study/study_output.h"
 #include "kernel/input_error.h"
@@ -39,8 +40,8 @@ void runFigures(const FiguresOptions& options) {
   const std::filesystem::path plots = !options.plotsDir.empty()
                                           ? std::filesystem::path(options.plotsDir)
                                           : root / (options.quick ? "plots/quick" : "plots");
-  std::filesystem::create_directories(results);
-  std::filesystem::create_directories(plots);
+  createOutputDirectory(results);
+  createOutputDirectory(plots);
   const StudyOptions study{options.gold, !options.quiet};
   for (const char* figure : {"fig1", "fig2"}) {
     runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),

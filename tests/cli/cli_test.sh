@@ -47,6 +47,8 @@ expect_error bad_degree "basis degree 9 is out of range" link "$fixtures/good_li
 expect_error missing_rule "--rule is required" link "$fixtures/good_link.json"
 expect_error unknown_option "--bogus" link "$fixtures/good_link.json" --rule FullGauss --bogus
 expect_error no_command "subcommand" 
+expect_error figures_unwritable "cannot create the folder" figures --quick --quiet --results /proc/radquad-results
+expect_error adaptive_unwritable "cannot create the folder" adaptive --quiet --plots /proc/radquad-plots
 
 # A good run: the documented keys, a 9x9 coupling at degree 2, half the rays blocked (the
 # fixture's blocker covers half of the mid plane; Gauss:4x4x3x3 is symmetric about it).
