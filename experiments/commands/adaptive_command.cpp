@@ -8,7 +8,6 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -31,12 +30,6 @@ struct AdaptiveCommandOptions {
   std::string python = "/usr/bin/python3";
   int threads = 0;
 };
-
-std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 void runAdaptive(const AdaptiveCommandOptions& command) {
   if (!(command.runs.threshold >= 0.0)) throw InputError("--threshold: must be >= 0");
@@ -63,14 +56,7 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
   if (!command.runs.quiet)
     std::cerr << "radquad adaptive: wrote " << (results / "adaptive.json") << "\n";
 
-  const std::string script = quoted(command.python) + " " +
-                             quoted((root / "plots/adaptive.py").string()) + " --results " +
-                             quoted(results.string()) + " --plots " + quoted(plots.string());
-  if (!command.runs.quiet) std::cerr << "radquad adaptive: " << script << "\n";
-  if (std::system(script.c_str()) != 0) {
-    throw InputError("plots/adaptive.py failed (is matplotlib installed for " + command.python +
-                     "?)");
-  }
+  runPlotScript(command.python, "adaptive.py", results, plots, "adaptive", command.runs.quiet);
 }
 
 }  // namespace

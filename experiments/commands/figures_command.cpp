@@ -3,7 +3,6 @@
 // --quick) into results/fig1.json, results/fig2.json, then draws plots/fig1.{png,svg} and
 // plots/fig2.{png,svg} with plots/figures.py. Quick runs go to results/quick/ and
 // plots/quick/ so they never overwrite the canonical tables.
-#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -25,12 +24,6 @@ struct FiguresOptions {
   std::string python = "/usr/bin/python3";
 };
 
-std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 void runFigures(const FiguresOptions& options) {
   const std::filesystem::path root = sourceRoot();
   const std::string suffix = options.quick ? "-quick" : "";
@@ -47,14 +40,7 @@ void runFigures(const FiguresOptions& options) {
     runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
                    results / (std::string(figure) + ".json"), study);
   }
-  const std::string command = quoted(options.python) + " " +
-                              quoted((root / "plots/figures.py").string()) + " --results " +
-                              quoted(results.string()) + " --plots " + quoted(plots.string());
-  if (!options.quiet) std::cerr << "radquad figures: " << command << "\n";
-  if (std::system(command.c_str()) != 0) {
-    throw InputError("plots/figures.py failed (is matplotlib installed for " + options.python +
-                     "?)");
-  }
+  runPlotScript(options.python, "figures.py", results, plots, "figures", options.quiet);
 }
 
 }  // namespace

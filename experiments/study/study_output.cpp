@@ -3,9 +3,11 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "experiments/atomic_file.h"
+#include "kernel/input_error.h"
 
 #ifndef RADQUAD_SOURCE_DIR
 #define RADQUAD_SOURCE_DIR "."
@@ -32,13 +34,31 @@ std::filesystem::path sourceRoot() {
 }
 
 std::string gitCommit() {
-  const std::string git = "git -C '" + sourceRoot().string() + "' ";
+  const std::string git = "git -C " + shellQuoted(sourceRoot().string()) + " ";
   const std::string head = commandOutput(git + "rev-parse HEAD 2>/dev/null");
   if (head.size() != 40) return "unknown";
   // The tables and figures a run writes do not count as changes to the code that made them.
   const std::string changes = commandOutput(
       git + "status --porcelain --untracked-files=no -- . ':!results' ':!plots' 2>/dev/null");
   return changes.empty() ? head : head + "-modified";
+}
+
+std::string shellQuoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+void runPlotScript(const std::string& python, const std::string& script,
+                   const std::filesystem::path& results, const std::filesystem::path& plots,
+                   const std::string& commandName, bool quiet) {
+  const std::string command =
+      shellQuoted(python) + " " + shellQuoted((sourceRoot() / "plots" / script).string()) +
+      " --results " + shellQuoted(results.string()) + " --plots " + shellQuoted(plots.string());
+  if (!quiet) std::cerr << "radquad " << commandName << ": " << command << "\n";
+  if (std::system(command.c_str()) != 0) {
+    throw InputError("plots/" + script + " failed (is matplotlib installed for " + python + "?)");
+  }
 }
 
 nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options) {

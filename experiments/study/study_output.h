@@ -17,6 +17,15 @@ std::filesystem::path sourceRoot();
 // outside results/ and plots/ differ from it; "unknown" outside a repository.
 std::string gitCommit();
 
+// `text` as one single-quoted word for the POSIX shell.
+std::string shellQuoted(const std::string& text);
+
+// Runs `python plots/SCRIPT --results RESULTS --plots PLOTS` from the source tree, echoing
+// the command on stderr as "radquad COMMAND: ..." unless quiet. InputError when it fails.
+void runPlotScript(const std::string& python, const std::string& script,
+                   const std::filesystem::path& results, const std::filesystem::path& plots,
+                   const std::string& commandName, bool quiet);
+
 nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options);
 
 // Runs the config at `configPath` and writes the table to `outPath` (atomically).
