@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "kernel/legendre_basis.h"
 #include "radiosity/visibility.h"
 
 namespace radquad {
@@ -53,43 +54,107 @@ bool elementsNear(const Patch& a, const Patch& b) {
   return distance < kNearFactor * (radiusA + radiusB) || elementsTouch(a, b);
 }
 
-void integrateLink(const Link& link, const std::array<int, 4>& rule, const GaussTables& tables,
-                   const TwoScale& twoScale, int depth, CouplingAccumulator& accumulator,
-                   LinkIntegrationResult& result) {
-  const int functions = (twoScale.degree() + 1) * (twoScale.degree() + 1);
+LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::array<int, 4>& rule,
+                                                const GaussTables& tables, int depth,
+                                                Eigen::Map<Eigen::MatrixXd> coupling) {
+  LinkIntegrationCounts counts;
   if (depth <= 0 || !elementsNear(link.receiver, link.source)) {
     const GaussSide& receiverSide = tables.side(rule[0], rule[1]);
     const GaussSide& sourceSide = tables.side(rule[2], rule[3]);
-    LinkIntegral integral;
-    accumulator.product(link, receiverSide.samples, receiverSide.basis, sourceSide.samples,
-                        sourceSide.basis, integral);
-    result.coupling = std::move(integral.coupling);
-    result.kernelEvaluations += integral.kernelEvaluations;
-    result.raysCast += integral.raysCast;
+    accumulator_.product(link, receiverSide.samples, receiverSide.basis, sourceSide.samples,
+                         sourceSide.basis, piece_);
+    coupling = piece_.coupling;
+    counts.kernelEvaluations = piece_.kernelEvaluations;
+    counts.raysCast = piece_.raysCast;
+    return counts;
+  }
+  coupling.setZero();
+  placedReceiver_ = false;  // a new link: its receiver rule or element may differ
+  addPieces(link, link.receiver, Square{}, link.source, Square{}, depth, rule, tables, coupling,
+            counts);
+  return counts;
+}
+
+// The side's points are the product of pointsU nodes along u and pointsV along v, point
+// k = i * pointsV + j (radiosity/gauss_tables.cpp), so the basis values are products of
+// phi_p(u_i) and phi_q(v_j), evaluated once per node.
+void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
+                               const Square& square, GaussSide& placed) {
+  const int degree = side.basis.degree;
+  const int orders = degree + 1;
+  const int functions = side.basis.functions;
+  const std::size_t points = side.samples.size();
+  const double area = square.size * square.size;
+  double alongU[GaussTables::kMaxPointsPerAxis][kMaxBasisDegree + 1];
+  double alongV[GaussTables::kMaxPointsPerAxis][kMaxBasisDegree + 1];
+  for (int i = 0; i < pointsU; ++i) {
+    const double u = square.u0 + square.size * side.samples.u[std::size_t(i * pointsV)];
+    shiftedLegendreValues(degree, u, alongU[i]);
+  }
+  for (int j = 0; j < pointsV; ++j) {
+    const double v = square.v0 + square.size * side.samples.v[std::size_t(j)];
+    shiftedLegendreValues(degree, v, alongV[j]);
+  }
+  placed.samples.u.resize(points);
+  placed.samples.v.resize(points);
+  placed.samples.weight.resize(points);
+  placed.basis.degree = degree;
+  placed.basis.functions = functions;
+  placed.basis.values.resize(points * std::size_t(functions));
+  for (int i = 0; i < pointsU; ++i) {
+    for (int j = 0; j < pointsV; ++j) {
+      const std::size_t k = std::size_t(i * pointsV + j);
+      const double weight = area * side.samples.weight[k];
+      placed.samples.u[k] = square.u0 + square.size * side.samples.u[k];
+      placed.samples.v[k] = square.v0 + square.size * side.samples.v[k];
+      placed.samples.weight[k] = weight;
+      double* row = placed.basis.values.data() + k * std::size_t(functions);
+      for (int p = 0; p < orders; ++p) {
+        const double wu = weight * alongU[i][p];
+        for (int q = 0; q < orders; ++q) row[p * orders + q] = wu * alongV[j][q];
+      }
+    }
+  }
+}
+
+void LinkIntegrator::addPieces(const Link& link, const Patch& receiver,
+                               const Square& receiverSquare, const Patch& source,
+                               const Square& sourceSquare, int depth,
+                               const std::array<int, 4>& rule, const GaussTables& tables,
+                               Eigen::Map<Eigen::MatrixXd>& coupling,
+                               LinkIntegrationCounts& counts) {
+  if (depth <= 0 || !elementsNear(receiver, source)) {
+    // Consecutive pieces often share the receiver square (the loops below): place it once.
+    if (!placedReceiver_ || receiverSquare.u0 != placedSquare_.u0 ||
+        receiverSquare.v0 != placedSquare_.v0 || receiverSquare.size != placedSquare_.size) {
+      placeSide(tables.side(rule[0], rule[1]), rule[0], rule[1], receiverSquare, receiverPiece_);
+      placedReceiver_ = true;
+      placedSquare_ = receiverSquare;
+    }
+    placeSide(tables.side(rule[2], rule[3]), rule[2], rule[3], sourceSquare, sourcePiece_);
+    // The whole elements' link: points in the pieces, the elements' basis functions.
+    accumulator_.product(link, receiverPiece_.samples, receiverPiece_.basis, sourcePiece_.samples,
+                         sourcePiece_.basis, piece_);
+    coupling += piece_.coupling;
+    counts.kernelEvaluations += piece_.kernelEvaluations;
+    counts.raysCast += piece_.raysCast;
     return;
   }
-  // K = sum_cr T_cr^T (sum_cs K_(cr,cs) T_cs), with coefficient-wise products (the
-  // matrices are at most 16 x 16: the blocked product's packing would cost more).
-  Eigen::MatrixXd total = Eigen::MatrixXd::Zero(functions, functions);
-  Eigen::MatrixXd inner(functions, functions);
-  LinkIntegrationResult piece;
+  // Quadrant c = 2 cu + cv, as quadrant() above.
+  auto childSquare = [](const Square& square, int c) {
+    const double half = 0.5 * square.size;
+    return Square{square.u0 + (c / 2) * half, square.v0 + (c % 2) * half, half};
+  };
   for (int cr = 0; cr < 4; ++cr) {
-    const Patch receiver = quadrant(link.receiver, cr);
-    inner.setZero();
-    bool any = false;
+    const Patch receiverQuadrant = quadrant(receiver, cr);
+    const Square receiverChild = childSquare(receiverSquare, cr);
     for (int cs = 0; cs < 4; ++cs) {
-      const Patch source = quadrant(link.source, cs);
-      if (!mayExchange(receiver, source)) continue;
-      const Link sub{receiver, source, link.occluders};
-      integrateLink(sub, rule, tables, twoScale, depth - 1, accumulator, piece);
-      inner.noalias() += piece.coupling.lazyProduct(twoScale.child(cs));
-      any = true;
+      const Patch sourceQuadrant = quadrant(source, cs);
+      if (!mayExchange(receiverQuadrant, sourceQuadrant)) continue;
+      addPieces(link, receiverQuadrant, receiverChild, sourceQuadrant,
+                childSquare(sourceSquare, cs), depth - 1, rule, tables, coupling, counts);
     }
-    if (any) total.noalias() += twoScale.child(cr).transpose().lazyProduct(inner);
   }
-  result.coupling = std::move(total);
-  result.kernelEvaluations += piece.kernelEvaluations;
-  result.raysCast += piece.raysCast;
 }
 
 }  // namespace radquad

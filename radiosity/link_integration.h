@@ -5,9 +5,13 @@
 // kernel 1/r^2 is unbounded and a product rule over the whole pair converges only like the
 // size of the touching region: a 1-point rule on two unit squares sharing an edge gives
 // F = 1/pi instead of 0.2000. Such a pair is split into its 4 x 4 quadrant pairs, recursively
-// up to `depth` levels where the quadrants still touch, each piece integrated with the same
-// rule, and the pieces are put together exactly with the two-scale matrices:
-//   K_parent = sum_{c, c'} T_c^T K_(c, c') T_c'    (radiosity/two_scale.h).
+// up to `depth` levels where the quadrants still touch, and the link's rule is applied on
+// every piece with the elements' own basis functions evaluated at the piece's points: a
+// composite product rule for the whole pair. It equals putting the pieces' own couplings
+// together with the two-scale matrices, K_parent = sum_{c, c'} T_c^T K_(c, c') T_c'
+// (radiosity/two_scale.h), since a parent function restricted to a quadrant is exactly that
+// combination of the quadrant's functions; it skips the (F x F)^2 products of that assembly,
+// which would cost more than the kernel evaluations of a small adaptive rule.
 #pragma once
 
 #include <array>
@@ -15,7 +19,6 @@
 
 #include "kernel/coupling.h"
 #include "radiosity/gauss_tables.h"
-#include "radiosity/two_scale.h"
 
 namespace radquad {
 
@@ -27,14 +30,41 @@ bool elementsTouch(const Patch& a, const Patch& b);
 inline constexpr double kNearFactor = 1.0;
 bool elementsNear(const Patch& a, const Patch& b);
 
-struct LinkIntegrationResult {
-  Eigen::MatrixXd coupling;
+// What integrating one link adds to the solver's counts.
+struct LinkIntegrationCounts {
   std::uint64_t kernelEvaluations = 0;
   std::uint64_t raysCast = 0;
 };
 
-void integrateLink(const Link& link, const std::array<int, 4>& rule, const GaussTables& tables,
-                   const TwoScale& twoScale, int depth, CouplingAccumulator& accumulator,
-                   LinkIntegrationResult& result);
+// Integrates links with Gauss product rules; one per thread (it keeps scratch space, so a
+// warm integrator allocates nothing beyond the output's first sizing).
+class LinkIntegrator {
+ public:
+  // Writes the link's coupling (rows receiver, columns source functions) for `rule`
+  // {Rs, Rt, Su, Sv} from `tables`, splitting touching pairs up to `depth` levels.
+  LinkIntegrationCounts integrate(const Link& link, const std::array<int, 4>& rule,
+                                  const GaussTables& tables, int depth,
+                                  Eigen::Map<Eigen::MatrixXd> coupling);
+
+ private:
+  // A square [u0, u0 + size] x [v0, v0 + size] of an element's parameter square.
+  struct Square {
+    double u0 = 0.0, v0 = 0.0, size = 1.0;
+  };
+  void addPieces(const Link& link, const Patch& receiver, const Square& receiverSquare,
+                 const Patch& source, const Square& sourceSquare, int depth,
+                 const std::array<int, 4>& rule, const GaussTables& tables,
+                 Eigen::Map<Eigen::MatrixXd>& coupling, LinkIntegrationCounts& counts);
+  // `side`'s points mapped into `square`, with weights scaled by its area and the
+  // element's basis values there.
+  static void placeSide(const GaussSide& side, int pointsU, int pointsV, const Square& square,
+                        GaussSide& placed);
+
+  CouplingAccumulator accumulator_;
+  LinkIntegral piece_;
+  GaussSide receiverPiece_, sourcePiece_;
+  bool placedReceiver_ = false;  // whether receiverPiece_ holds placedSquare_ for this link
+  Square placedSquare_;
+};
 
 }  // namespace radquad

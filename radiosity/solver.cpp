@@ -7,25 +7,29 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "kernel/coupling.h"
 #include "kernel/occluder_scene.h"
 #include "quadrature/adaptive_gauss.h"
 #include "quadrature/random/philox.h"
+#include "radiosity/coupling_store.h"
 #include "radiosity/gauss_tables.h"
 #include "radiosity/link_integration.h"
 
 namespace radquad {
 
 struct Solver::Impl {
-  Impl(const Scene& scene, int degree) : tables(degree), classifier(scene, occluders) {
+  Impl(const Scene& scene, int degree)
+      : tables(degree), classifier(scene, occluders), couplings((degree + 1) * (degree + 1)) {
     for (const ScenePatch& patch : scene.patches) occluders.addParallelogram(patch.patch);
     occluders.commit();
   }
   OccluderScene occluders;  // every patch; a link's own patches never block it (DESIGN.md)
   GaussTables tables;
   VisibilityClassifier classifier;
-  tbb::enumerable_thread_specific<CouplingAccumulator> accumulators;
+  tbb::enumerable_thread_specific<LinkIntegrator> integrators;
+  CouplingStore couplings;  // K of link k in slot k (rows receiver, columns source functions)
 };
 
 Solver::Solver(const Scene& scene, SolverOptions options)
@@ -126,7 +130,7 @@ bool Solver::refinementPass() {
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
       parent.computed = false;
-      parent.coupling.resize(0, 0);
+      if (parent.slot >= 0) freeSlots_.push_back(std::exchange(parent.slot, -1));
       const int receiver = parent.receiver, source = parent.source;
       const LinkClass visibility = parent.visibility;
       const std::vector<int> candidates = std::move(parent.candidates);
@@ -177,21 +181,26 @@ const char* ruleChoiceName(RuleChoice rules) {
 // due to the energy gain"; a rule never shrinks back (that would only recompute to lose
 // accuracy). The partial-visibility draw uses a generator keyed by the (receiver, source)
 // element ids, so it is the same whatever the thread count.
-std::array<int, 4> Solver::chooseRule(const SolverLink& link) const {
-  const int degree = options_.degree;
-  const int n = degree + 1;
-  if (options_.rules == RuleChoice::kFixed) return {n, n, n, n};
-  const Element& source = (*hierarchy_)[link.source];
+AdaptiveGaussInput Solver::adaptiveInput(int sourceElement, double* magnitudes) const {
+  const int n = options_.degree + 1;
+  const Element& source = (*hierarchy_)[sourceElement];
   const double normaliser =
       radiosityScale_ > 0.0 ? 1.0 / (std::sqrt(source.geometry.area) * radiosityScale_) : 0.0;
-  double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
   for (int a = 0; a < n * n; ++a) {
     magnitudes[a] = source.radiosity.row(a).cwiseAbs().maxCoeff() * normaliser;
   }
   AdaptiveGaussInput input;
-  input.degree = degree;
+  input.degree = options_.degree;
   input.magnitudes = magnitudes;
   input.errThres = options_.errThres;
+  return input;
+}
+
+std::array<int, 4> Solver::chooseRule(const SolverLink& link) const {
+  const int n = options_.degree + 1;
+  if (options_.rules == RuleChoice::kFixed) return {n, n, n, n};
+  double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
+  AdaptiveGaussInput input = adaptiveInput(link.source, magnitudes);
   input.partiallyOccluded = link.visibility == LinkClass::kPartial;
   std::array<int, 4> rule;
   if (options_.rules == RuleChoice::kAdaptive) {
@@ -207,31 +216,62 @@ std::array<int, 4> Solver::chooseRule(const SolverLink& link) const {
   return rule;
 }
 
+// The source-axis points {Su, Sv} of Figure 4 without its visibility step, for every element
+// (a function of the element's coefficients only). A link whose source's points are those it
+// was last integrated with cannot need a larger rule: its visibility step draws from its own
+// generator keyed by the link's ids, so it would choose the same rule again. Only the other
+// links go through chooseRule, which keeps the per-iteration check at one comparison per link.
+void Solver::updateSourcePoints() {
+  const int n = options_.degree + 1;
+  sourcePoints_.resize(hierarchy_->size());
+  tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
+    if (options_.rules == RuleChoice::kFixed) {
+      sourcePoints_[e] = {n, n};
+      return;
+    }
+    double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
+    const std::array<int, 4> rule = chooseGaussRulesNoVisibility(adaptiveInput(int(e), magnitudes));
+    sourcePoints_[e] = {rule[2], rule[3]};
+  });
+}
+
 void Solver::computeCouplings() {
   const auto start = std::chrono::steady_clock::now();
-  // The choices in parallel (each a pure function of its link and the radiosity), the
-  // list of links to integrate in link order.
-  std::vector<std::array<int, 4>> chosen(links_.size());
-  tbb::parallel_for(std::size_t(0), links_.size(), [&](std::size_t k) {
-    if (links_[k].active) chosen[k] = chooseRule(links_[k]);
-  });
+  updateSourcePoints();
   std::vector<int> todo;
   std::vector<std::array<int, 4>> rules;
   std::vector<bool> again;
   for (std::size_t k = 0; k < links_.size(); ++k) {
-    const SolverLink& link = links_[k];
+    SolverLink& link = links_[k];
     if (!link.active) continue;
+    const std::array<int, 2>& sourcePoints = sourcePoints_[std::size_t(link.source)];
+    if (link.computed && sourcePoints == link.sourcePoints) continue;
     // A link whose source has no radiosity yet carries nothing: it is integrated once its
     // source has some (with every rule choice), so that the adaptive choice sees the
     // source's coefficients rather than zeros.
     if (!link.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
-    const std::array<int, 4>& rule = chosen[k];
+    link.sourcePoints = sourcePoints;
+    const std::array<int, 4> rule = chooseRule(link);
     if (link.computed && rule == link.rule) continue;
     if (link.computed) ++statistics_.recomputations;
     todo.push_back(int(k));
     rules.push_back(rule);
     again.push_back(link.computed);
   }
+  const auto chosen = std::chrono::steady_clock::now();
+  // Storage for the new links' matrices (untimed: the same for every rule choice).
+  for (int index : todo) {
+    SolverLink& link = links_[std::size_t(index)];
+    if (link.slot >= 0) continue;
+    if (freeSlots_.empty()) {
+      link.slot = int(impl_->couplings.size());
+      impl_->couplings.resize(impl_->couplings.size() + 1);
+    } else {
+      link.slot = freeSlots_.back();
+      freeSlots_.pop_back();
+    }
+  }
+  const auto stored = std::chrono::steady_clock::now();
   std::vector<std::uint64_t> rays(todo.size(), 0);
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t k) {
     SolverLink& link = links_[std::size_t(todo[k])];
@@ -239,14 +279,13 @@ void Solver::computeCouplings() {
     const Link kernelLink{(*hierarchy_)[link.receiver].geometry,
                           (*hierarchy_)[link.source].geometry,
                           link.visibility == LinkClass::kPartial ? &impl_->occluders : nullptr};
-    LinkIntegrationResult integral;
-    integrateLink(kernelLink, rule, impl_->tables, hierarchy_->twoScale(), options_.singularDepth,
-                  impl_->accumulators.local(), integral);
-    link.coupling = std::move(integral.coupling);
-    link.kernelEvaluations = integral.kernelEvaluations;
+    const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
+        kernelLink, rule, impl_->tables, options_.singularDepth,
+        impl_->couplings[std::size_t(link.slot)]);
+    link.kernelEvaluations = counts.kernelEvaluations;
     link.rule = rule;
     link.computed = true;
-    rays[k] = integral.raysCast;
+    rays[k] = counts.raysCast;
   });
   for (std::size_t k = 0; k < todo.size(); ++k) {
     statistics_.kernelEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
@@ -257,7 +296,8 @@ void Solver::computeCouplings() {
   }
   statistics_.couplingComputations += todo.size();
   statistics_.couplingSeconds +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::chrono::duration<double>(chosen - start).count() +
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - stored).count();
 }
 
 void Solver::rebuildElementLinks() {
@@ -267,18 +307,49 @@ void Solver::rebuildElementLinks() {
   }
 }
 
+namespace {
+
+// gathered += sum over the links of K (F x F) times the source's B (F x 3), with F known at
+// compile time (Eigen::Dynamic for other sizes) so that the small products unroll into
+// vector multiply-adds: a gather visits every link in every iteration.
+template <int F>
+void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& couplings,
+                 const Hierarchy& hierarchy, Element& element) {
+  const int functions = int(element.gathered.rows());
+  using Matrix = Eigen::Matrix<double, F, F>;
+  using Block = Eigen::Matrix<double, F, 3>;
+  Block sum = Block::Zero(functions, 3);
+  for (int index : element.links) {
+    const SolverLink& link = links[std::size_t(index)];
+    if (!link.computed) continue;  // its source had no radiosity yet
+    sum.noalias() +=
+        Eigen::Map<const Matrix>(couplings.data(std::size_t(link.slot)), functions, functions)
+            .lazyProduct(
+                Eigen::Map<const Block>(hierarchy[link.source].radiosity.data(), functions, 3));
+  }
+  element.gathered = sum;
+}
+
+}  // namespace
+
 // E_R = sum over R's links of K B_S (DESIGN.md: E_a = sum_b K[a][b] B_b), with every
 // source's radiosity from the previous iteration (Jacobi).
 void Solver::gather() {
+  const int functions = hierarchy_->functions();
+  const CouplingStore& couplings = impl_->couplings;
   tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
     Element& element = (*hierarchy_)[int(e)];
-    element.gathered.setZero();
-    for (int index : element.links) {
-      const SolverLink& link = links_[std::size_t(index)];
-      if (!link.computed) continue;  // its source had no radiosity yet
-      // A coefficient-wise product: these matrices are at most 16 x 16 times 16 x 3, too
-      // small for the blocked matrix product's packing and allocations.
-      element.gathered.noalias() += link.coupling.lazyProduct((*hierarchy_)[link.source].radiosity);
+    switch (functions) {
+      case 1:
+        return gatherLinks<1>(links_, couplings, *hierarchy_, element);
+      case 4:
+        return gatherLinks<4>(links_, couplings, *hierarchy_, element);
+      case 9:
+        return gatherLinks<9>(links_, couplings, *hierarchy_, element);
+      case 16:
+        return gatherLinks<16>(links_, couplings, *hierarchy_, element);
+      default:
+        return gatherLinks<Eigen::Dynamic>(links_, couplings, *hierarchy_, element);
     }
   });
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "quadrature/adaptive_gauss.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/scene.h"
 #include "radiosity/visibility.h"
@@ -78,11 +79,12 @@ struct SolverLink {
   int source = 0;
   LinkClass visibility = LinkClass::kUnoccluded;
   bool active = true;
-  bool computed = false;                   // whether `coupling` holds this rule's matrix
-  std::array<int, 4> rule = {1, 1, 1, 1};  // Gauss points on {Rs, Rt, Su, Sv}
-  Eigen::MatrixXd coupling;                // K (DESIGN.md): rows receiver, columns source
-  std::uint64_t kernelEvaluations = 0;     // of the last computation
-  std::vector<int> candidates;             // candidate occluders (patch indices)
+  bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
+  int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
+  std::array<int, 4> rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
+  std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
+  std::uint64_t kernelEvaluations = 0;       // of the last computation
+  std::vector<int> candidates;               // candidate occluders (patch indices)
 };
 
 struct SolveStatistics {
@@ -99,7 +101,8 @@ struct SolveStatistics {
   double finalChange = 0.0;
   double elapsedSeconds = 0.0;
   // Wall time spent choosing rules and integrating couplings (the part the rule choice
-  // changes; the rest is refinement, visibility classification, gathers and push/pull).
+  // changes; the rest is refinement, visibility classification, the storage of the coupling
+  // matrices, gathers and push/pull).
   double couplingSeconds = 0.0;
 };
 
@@ -126,7 +129,10 @@ class Solver {
   bool refinementPass();
   void classifyLinks(std::vector<int>& created);
   bool oracleSaysRefine(const SolverLink& link) const;
+  // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
+  AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
   std::array<int, 4> chooseRule(const SolverLink& link) const;
+  void updateSourcePoints();
   void computeCouplings();
   void gather();
   double pushPull();
@@ -138,6 +144,8 @@ class Solver {
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Hierarchy> hierarchy_;
   std::vector<SolverLink> links_;
+  std::vector<std::array<int, 2>> sourcePoints_;  // per element, see updateSourcePoints
+  std::vector<int> freeSlots_;  // coupling store slots of links since refined, for reuse
   SolveStatistics statistics_;
   double minArea_ = 0.0;
   double radiosityScale_ = 0.0;  // the emitted power over the total area
