@@ -1,6 +1,8 @@
 #include "radiosity/link_integration.h"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "kernel/legendre_basis.h"
 #include "radiosity/visibility.h"
@@ -68,10 +70,41 @@ LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::arr
     counts.raysCast = piece_.raysCast;
     return counts;
   }
+  pieces_.clear();
+  collectPieces(link.receiver, Square{}, link.source, Square{}, depth);
+  // The pieces that share a receiver square form one product rule: that square's points
+  // times the points of all its source squares. Grouping them makes fewer, larger products
+  // (and fuller ray packets) than one product per piece.
+  std::stable_sort(pieces_.begin(), pieces_.end(), [](const Piece& a, const Piece& b) {
+    return std::tie(a.receiver.size, a.receiver.u0, a.receiver.v0) >
+           std::tie(b.receiver.size, b.receiver.u0, b.receiver.v0);
+  });
+  const GaussSide& receiverSide = tables.side(rule[0], rule[1]);
+  const GaussSide& sourceSide = tables.side(rule[2], rule[3]);
+  const std::size_t sourcePoints = sourceSide.samples.size();
   coupling.setZero();
-  placedReceiver_ = false;  // a new link: its receiver rule or element may differ
-  addPieces(link, link.receiver, Square{}, link.source, Square{}, depth, rule, tables, coupling,
-            counts);
+  for (std::size_t first = 0; first < pieces_.size();) {
+    std::size_t last = first + 1;
+    while (last < pieces_.size() && pieces_[last].receiver.size == pieces_[first].receiver.size &&
+           pieces_[last].receiver.u0 == pieces_[first].receiver.u0 &&
+           pieces_[last].receiver.v0 == pieces_[first].receiver.v0) {
+      ++last;
+    }
+    placeSide(receiverSide, rule[0], rule[1], pieces_[first].receiver, receiverPiece_, 0,
+              receiverSide.samples.size());
+    const std::size_t total = (last - first) * sourcePoints;
+    for (std::size_t k = first; k < last; ++k) {
+      placeSide(sourceSide, rule[2], rule[3], pieces_[k].source, sourcePiece_,
+                (k - first) * sourcePoints, total);
+    }
+    // The whole elements' link: points in the pieces, the elements' basis functions.
+    accumulator_.product(link, receiverPiece_.samples, receiverPiece_.basis, sourcePiece_.samples,
+                         sourcePiece_.basis, piece_);
+    coupling += piece_.coupling;
+    counts.kernelEvaluations += piece_.kernelEvaluations;
+    counts.raysCast += piece_.raysCast;
+    first = last;
+  }
   return counts;
 }
 
@@ -79,11 +112,11 @@ LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::arr
 // k = i * pointsV + j (radiosity/gauss_tables.cpp), so the basis values are products of
 // phi_p(u_i) and phi_q(v_j), evaluated once per node.
 void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
-                               const Square& square, GaussSide& placed) {
+                               const Square& square, GaussSide& placed, std::size_t offset,
+                               std::size_t total) {
   const int degree = side.basis.degree;
   const int orders = degree + 1;
   const int functions = side.basis.functions;
-  const std::size_t points = side.samples.size();
   const double area = square.size * square.size;
   double alongU[GaussTables::kMaxPointsPerAxis][kMaxBasisDegree + 1];
   double alongV[GaussTables::kMaxPointsPerAxis][kMaxBasisDegree + 1];
@@ -95,20 +128,21 @@ void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
     const double v = square.v0 + square.size * side.samples.v[std::size_t(j)];
     shiftedLegendreValues(degree, v, alongV[j]);
   }
-  placed.samples.u.resize(points);
-  placed.samples.v.resize(points);
-  placed.samples.weight.resize(points);
+  placed.samples.u.resize(total);
+  placed.samples.v.resize(total);
+  placed.samples.weight.resize(total);
   placed.basis.degree = degree;
   placed.basis.functions = functions;
-  placed.basis.values.resize(points * std::size_t(functions));
+  placed.basis.values.resize(total * std::size_t(functions));
   for (int i = 0; i < pointsU; ++i) {
     for (int j = 0; j < pointsV; ++j) {
       const std::size_t k = std::size_t(i * pointsV + j);
+      const std::size_t out = offset + k;
       const double weight = area * side.samples.weight[k];
-      placed.samples.u[k] = square.u0 + square.size * side.samples.u[k];
-      placed.samples.v[k] = square.v0 + square.size * side.samples.v[k];
-      placed.samples.weight[k] = weight;
-      double* row = placed.basis.values.data() + k * std::size_t(functions);
+      placed.samples.u[out] = square.u0 + square.size * side.samples.u[k];
+      placed.samples.v[out] = square.v0 + square.size * side.samples.v[k];
+      placed.samples.weight[out] = weight;
+      double* row = placed.basis.values.data() + out * std::size_t(functions);
       for (int p = 0; p < orders; ++p) {
         const double wu = weight * alongU[i][p];
         for (int q = 0; q < orders; ++q) row[p * orders + q] = wu * alongV[j][q];
@@ -117,27 +151,10 @@ void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
   }
 }
 
-void LinkIntegrator::addPieces(const Link& link, const Patch& receiver,
-                               const Square& receiverSquare, const Patch& source,
-                               const Square& sourceSquare, int depth,
-                               const std::array<int, 4>& rule, const GaussTables& tables,
-                               Eigen::Map<Eigen::MatrixXd>& coupling,
-                               LinkIntegrationCounts& counts) {
+void LinkIntegrator::collectPieces(const Patch& receiver, const Square& receiverSquare,
+                                   const Patch& source, const Square& sourceSquare, int depth) {
   if (depth <= 0 || !elementsNear(receiver, source)) {
-    // Consecutive pieces often share the receiver square (the loops below): place it once.
-    if (!placedReceiver_ || receiverSquare.u0 != placedSquare_.u0 ||
-        receiverSquare.v0 != placedSquare_.v0 || receiverSquare.size != placedSquare_.size) {
-      placeSide(tables.side(rule[0], rule[1]), rule[0], rule[1], receiverSquare, receiverPiece_);
-      placedReceiver_ = true;
-      placedSquare_ = receiverSquare;
-    }
-    placeSide(tables.side(rule[2], rule[3]), rule[2], rule[3], sourceSquare, sourcePiece_);
-    // The whole elements' link: points in the pieces, the elements' basis functions.
-    accumulator_.product(link, receiverPiece_.samples, receiverPiece_.basis, sourcePiece_.samples,
-                         sourcePiece_.basis, piece_);
-    coupling += piece_.coupling;
-    counts.kernelEvaluations += piece_.kernelEvaluations;
-    counts.raysCast += piece_.raysCast;
+    pieces_.push_back(Piece{receiverSquare, sourceSquare});
     return;
   }
   // Quadrant c = 2 cu + cv, as quadrant() above.
@@ -151,8 +168,8 @@ void LinkIntegrator::addPieces(const Link& link, const Patch& receiver,
     for (int cs = 0; cs < 4; ++cs) {
       const Patch sourceQuadrant = quadrant(source, cs);
       if (!mayExchange(receiverQuadrant, sourceQuadrant)) continue;
-      addPieces(link, receiverQuadrant, receiverChild, sourceQuadrant,
-                childSquare(sourceSquare, cs), depth - 1, rule, tables, coupling, counts);
+      collectPieces(receiverQuadrant, receiverChild, sourceQuadrant, childSquare(sourceSquare, cs),
+                    depth - 1);
     }
   }
 }

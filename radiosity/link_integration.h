@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "kernel/coupling.h"
 #include "radiosity/gauss_tables.h"
@@ -51,20 +52,23 @@ class LinkIntegrator {
   struct Square {
     double u0 = 0.0, v0 = 0.0, size = 1.0;
   };
-  void addPieces(const Link& link, const Patch& receiver, const Square& receiverSquare,
-                 const Patch& source, const Square& sourceSquare, int depth,
-                 const std::array<int, 4>& rule, const GaussTables& tables,
-                 Eigen::Map<Eigen::MatrixXd>& coupling, LinkIntegrationCounts& counts);
-  // `side`'s points mapped into `square`, with weights scaled by its area and the
+  struct Piece {
+    Square receiver, source;
+  };
+  // Appends the pieces of the pair (squares of the link's elements): the pair itself, or,
+  // where the two still touch and depth > 0, the pieces of its quadrant pairs.
+  void collectPieces(const Patch& receiver, const Square& receiverSquare, const Patch& source,
+                     const Square& sourceSquare, int depth);
+  // Writes `side`'s points mapped into `square` to points offset .. offset + side's count of
+  // `placed` (sized to `total` points), with weights scaled by the square's area and the
   // element's basis values there.
   static void placeSide(const GaussSide& side, int pointsU, int pointsV, const Square& square,
-                        GaussSide& placed);
+                        GaussSide& placed, std::size_t offset, std::size_t total);
 
   CouplingAccumulator accumulator_;
   LinkIntegral piece_;
   GaussSide receiverPiece_, sourcePiece_;
-  bool placedReceiver_ = false;  // whether receiverPiece_ holds placedSquare_ for this link
-  Square placedSquare_;
+  std::vector<Piece> pieces_;
 };
 
 }  // namespace radquad
