@@ -32,6 +32,12 @@ class StratifiedRule : public RandomPointRule {
   std::string family() const override { return "Stratified Monte Carlo"; }
   std::string citation() const override;
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override;
+  std::unique_ptr<PointStream> pointStream(std::uint64_t seed) const override;
+
+  // Writes the points of cells first .. first + count - 1 of the draw `seed` (what
+  // samples(seed) lists at those indices) to s, t, u, v.
+  void fillPoints(std::uint64_t seed, std::size_t first, std::size_t count, double* s, double* t,
+                  double* u, double* v) const;
 
   int strataPerAxis() const { return strata_; }
 

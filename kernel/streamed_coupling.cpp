@@ -1,0 +1,174 @@
+// The streamed coupling path (kernel/coupling.h): points of equal weight come from a
+// PointStream block by block, and each block of 256 goes through one fused pass: draw,
+// place on both patches, evaluate G, stage and trace its rays straight into the Embree
+// packets, drop the points whose G V is zero, contract (kernel/block_contraction.h).
+// The sum, the rays and the ray counts are those of scattered() on the same points; only
+// the order of the additions differs (tests/kernel/coupling_paths_test.cpp).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "kernel/coupling.h"
+#include "kernel/coupling_internal.h"
+#include "kernel/legendre_basis.h"
+
+namespace radquad {
+
+using detail::kernelTimesPi;
+using detail::kPointBlock;
+using detail::PatchFrame;
+
+namespace {
+
+// Columns of one block, kPointBlock entries each.
+enum Column { kS, kT, kU, kV, kKernel, kOriginX, kOriginY, kOriginZ, kToX, kToY, kToZ, kColumns };
+
+// Places the block's points on both patches, evaluates G pi (kernelTimesPi) and, with
+// kSegments, keeps the segment of each point; returns how many points have a positive
+// kernel. The frames come by value so that the loop holds them in registers.
+template <bool kSegments>
+std::size_t placeAndEvaluate(const PatchFrame receiverFrame, const PatchFrame sourceFrame,
+                             std::size_t rows, double* const (&column)[kColumns]) {
+  const double* __restrict ps = column[kS];
+  const double* __restrict pt = column[kT];
+  const double* __restrict pu = column[kU];
+  const double* __restrict pv = column[kV];
+  double* __restrict g = column[kKernel];
+  double* __restrict ox = column[kOriginX];
+  double* __restrict oy = column[kOriginY];
+  double* __restrict oz = column[kOriginZ];
+  double* __restrict dx = column[kToX];
+  double* __restrict dy = column[kToY];
+  double* __restrict dz = column[kToZ];
+  std::size_t positive = 0;
+  // The columns never overlap (GCC does not see it through the restrict locals).
+#pragma GCC ivdep
+  for (std::size_t k = 0; k < rows; ++k) {
+    double rx, ry, rz, receiverOwn, receiverOther, sx, sy, sz, sourceOwn, sourceOther;
+    receiverFrame.place(ps[k], pt[k], rx, ry, rz, receiverOwn, receiverOther);
+    sourceFrame.place(pu[k], pv[k], sx, sy, sz, sourceOwn, sourceOther);
+    const double kernel = kernelTimesPi(sx - rx, sy - ry, sz - rz, sourceOther - receiverOwn,
+                                        receiverOther - sourceOwn);
+    g[k] = kernel;
+    if constexpr (kSegments) {
+      ox[k] = rx;
+      oy[k] = ry;
+      oz[k] = rz;
+      dx[k] = sx - rx;
+      dy[k] = sy - ry;
+      dz[k] = sz - rz;
+    }
+    positive += kernel > 0.0 ? 1 : 0;
+  }
+  return positive;
+}
+
+}  // namespace
+
+void CouplingAccumulator::streamed(const Link& link, const PointStream& points, int degree,
+                                   LinkIntegral& result) {
+  validateBasisDegree(degree);
+  const std::size_t count = points.size();
+  const Patch& r = link.receiver;
+  const Patch& s = link.source;
+  const PatchFrame receiverFrame(r, s.normal), sourceFrame(s, r.normal);
+  const bool occluded = link.hasOccluders();
+  streamBlock_.resize(kColumns * kPointBlock);
+  double* column[kColumns];
+  for (int c = 0; c < kColumns; ++c) column[c] = streamBlock_.data() + c * kPointBlock;
+  double* __restrict ps = column[kS];
+  double* __restrict pt = column[kT];
+  double* __restrict pu = column[kU];
+  double* __restrict pv = column[kV];
+  double* __restrict g = column[kKernel];
+  const double* __restrict ox = column[kOriginX];
+  const double* __restrict oy = column[kOriginY];
+  const double* __restrict oz = column[kOriginZ];
+  const double* __restrict dx = column[kToX];
+  const double* __restrict dy = column[kToY];
+  const double* __restrict dz = column[kToZ];
+  if (occluded) rayPairs_.resize(kPointBlock);
+  contraction_.begin(degree);
+  std::uint64_t cast = 0, blocked = 0;
+
+  for (std::size_t start = 0; start < count; start += kPointBlock) {
+    const std::size_t rows = std::min(kPointBlock, count - start);
+    points.fill(start, rows, ps, pt, pu, pv);
+    const std::size_t positive =
+        occluded ? placeAndEvaluate<true>(receiverFrame, sourceFrame, rows, column)
+                 : placeAndEvaluate<false>(receiverFrame, sourceFrame, rows, column);
+    std::size_t kept = rows;
+    if (occluded) {
+      // One ray per point whose unoccluded kernel is positive, written into the packets.
+      std::size_t rays = 0;
+      if (positive == rows) {
+        segments_.resize(rows);
+        for (std::size_t p = 0; p < segments_.packetCount(); ++p) {
+          RTCRay16& packet = segments_.packets()[p];
+          const std::size_t first = 16 * p;
+          const std::size_t lanes = std::min<std::size_t>(16, rows - first);
+          for (std::size_t lane = 0; lane < lanes; ++lane) {
+            packet.org_x[lane] = float(ox[first + lane]);
+            packet.org_y[lane] = float(oy[first + lane]);
+            packet.org_z[lane] = float(oz[first + lane]);
+            packet.dir_x[lane] = float(dx[first + lane]);
+            packet.dir_y[lane] = float(dy[first + lane]);
+            packet.dir_z[lane] = float(dz[first + lane]);
+            packet.tfar[lane] = 1.0f - kSegmentEpsilon;
+          }
+        }
+        rays = rows;
+        link.occluders->trace(segments_);
+        for (std::size_t p = 0; p < segments_.packetCount(); ++p) {
+          const RTCRay16& packet = segments_.packet(p);
+          const std::size_t first = 16 * p;
+          const std::size_t lanes = std::min<std::size_t>(16, rows - first);
+          for (std::size_t lane = 0; lane < lanes; ++lane) {
+            const bool visible = packet.tfar[lane] >= 0.0f;
+            g[first + lane] = visible ? g[first + lane] : 0.0;
+            blocked += visible ? 0 : 1;
+          }
+        }
+      } else {
+        segments_.resize(rows);
+        for (std::size_t k = 0; k < rows; ++k) {
+          segments_.set(rays, ox[k], oy[k], oz[k], dx[k], dy[k], dz[k]);
+          rayPairs_[rays] = std::uint32_t(k);
+          rays += g[k] > 0.0 ? 1 : 0;
+        }
+        segments_.resize(rays);
+        link.occluders->trace(segments_);
+        for (std::size_t ray = 0; ray < rays; ++ray) {
+          if (segments_.visible(ray)) continue;
+          g[rayPairs_[ray]] = 0.0;
+          ++blocked;
+        }
+      }
+      cast += rays;
+    }
+    if (occluded || positive < rows) {
+      // Points with G V = 0 add nothing: contract only the others (in order).
+      kept = 0;
+      for (std::size_t k = 0; k < rows; ++k) {
+        const double gk = g[k];
+        ps[kept] = ps[k];
+        pt[kept] = pt[k];
+        pu[kept] = pu[k];
+        pv[kept] = pv[k];
+        g[kept] = gk;
+        kept += gk != 0.0 ? 1 : 0;
+      }
+    }
+    contraction_.accumulate(kept, ps, pt, pu, pv, g);
+  }
+  contraction_.end(result.coupling);
+
+  result.raysCast = cast;
+  result.raysBlocked = blocked;
+  // Equal weights 1/N, applied once to the sum.
+  result.coupling *= (1.0 / double(count)) * std::sqrt(r.area * s.area) / std::numbers::pi;
+  result.formFactor = result.coupling(0, 0) * std::sqrt(s.area / r.area);
+  result.kernelEvaluations = count;
+}
+
+}  // namespace radquad
