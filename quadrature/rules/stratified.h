@@ -13,7 +13,8 @@
 // | `Stratified:k` | k^4     | k = 1..56 strata per axis |
 // Degree: none. Seed: the cell c = ((i_s k + i_t) k + i_u) k + i_v draws its jitter from
 // Philox blocks 2c and 2c+1 of stream kStratified, so the point of a cell depends only on
-// (seed, c). Points are listed in cell order.
+// (seed, c). Points are listed in cell order; pointStream(seed) gives the same points block
+// by block (any range of cells), which the reference integrates without storing them.
 #pragma once
 
 #include <memory>
