@@ -47,6 +47,10 @@ PhiloxCounter philox4x32(PhiloxCounter counter, PhiloxKey key) {
   return counter;
 }
 
+// The 64-byte vectors below never cross a non-inlined boundary with external linkage, so
+// GCC's note that their ABI differs without AVX-512 (a -march=native OFF build) is moot.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace {
 
 // Philox blocks side by side, one block per 64-bit lane of an 8-lane vector (GCC/Clang vector
