@@ -24,46 +24,63 @@ using detail::PatchFrame;
 namespace {
 
 // Columns of one block, kPointBlock entries each.
-enum Column { kS, kT, kU, kV, kKernel, kOriginX, kOriginY, kOriginZ, kToX, kToY, kToZ, kColumns };
+enum Column { kS, kT, kU, kV, kKernel, kColumns };
 
-// Places the block's points on both patches, evaluates G pi (kernelTimesPi) and, with
-// kSegments, keeps the segment of each point; returns how many points have a positive
-// kernel. The frames come by value so that the loop holds them in registers.
-template <bool kSegments>
+// Places point k of the block on both patches and evaluates G pi (kernelTimesPi); with
+// kStage, also writes its segment to lane k % 16 of packet k / 16 exactly as
+// SegmentBatch::set does (float origin x and direction x' - x, tfar 1 - epsilon). Returns how
+// many points have a positive kernel. The frames come by value so that the loop keeps them in
+// registers; the inner loop over a packet's 16 lanes vectorises.
+template <bool kStage>
 std::size_t placeAndEvaluate(const PatchFrame receiverFrame, const PatchFrame sourceFrame,
-                             std::size_t rows, double* const (&column)[kColumns]) {
+                             std::size_t rows, double* const (&column)[kColumns],
+                             RTCRay16* packets) {
   const double* __restrict ps = column[kS];
   const double* __restrict pt = column[kT];
   const double* __restrict pu = column[kU];
   const double* __restrict pv = column[kV];
   double* __restrict g = column[kKernel];
-  double* __restrict ox = column[kOriginX];
-  double* __restrict oy = column[kOriginY];
-  double* __restrict oz = column[kOriginZ];
-  double* __restrict dx = column[kToX];
-  double* __restrict dy = column[kToY];
-  double* __restrict dz = column[kToZ];
   std::size_t positive = 0;
-  // The columns never overlap (GCC does not see it through the restrict locals).
+  for (std::size_t first = 0; first < rows; first += 16) {
+    const std::size_t lanes = std::min<std::size_t>(16, rows - first);
+    RTCRay16* packet = kStage ? packets + first / 16 : nullptr;
+    // The columns never overlap (GCC does not see it through the restrict locals).
 #pragma GCC ivdep
-  for (std::size_t k = 0; k < rows; ++k) {
-    double rx, ry, rz, receiverOwn, receiverOther, sx, sy, sz, sourceOwn, sourceOther;
-    receiverFrame.place(ps[k], pt[k], rx, ry, rz, receiverOwn, receiverOther);
-    sourceFrame.place(pu[k], pv[k], sx, sy, sz, sourceOwn, sourceOther);
-    const double kernel = kernelTimesPi(sx - rx, sy - ry, sz - rz, sourceOther - receiverOwn,
-                                        receiverOther - sourceOwn);
-    g[k] = kernel;
-    if constexpr (kSegments) {
-      ox[k] = rx;
-      oy[k] = ry;
-      oz[k] = rz;
-      dx[k] = sx - rx;
-      dy[k] = sy - ry;
-      dz[k] = sz - rz;
+    for (std::size_t lane = 0; lane < lanes; ++lane) {
+      const std::size_t k = first + lane;
+      double rx, ry, rz, receiverOwn, receiverOther, sx, sy, sz, sourceOwn, sourceOther;
+      receiverFrame.place(ps[k], pt[k], rx, ry, rz, receiverOwn, receiverOther);
+      sourceFrame.place(pu[k], pv[k], sx, sy, sz, sourceOwn, sourceOther);
+      const double kernel = kernelTimesPi(sx - rx, sy - ry, sz - rz, sourceOther - receiverOwn,
+                                          receiverOther - sourceOwn);
+      g[k] = kernel;
+      positive += kernel > 0.0 ? 1 : 0;
+      if constexpr (kStage) {
+        packet->org_x[lane] = float(rx);
+        packet->org_y[lane] = float(ry);
+        packet->org_z[lane] = float(rz);
+        packet->dir_x[lane] = float(sx - rx);
+        packet->dir_y[lane] = float(sy - ry);
+        packet->dir_z[lane] = float(sz - rz);
+        packet->tfar[lane] = 1.0f - kSegmentEpsilon;
+      }
     }
-    positive += kernel > 0.0 ? 1 : 0;
   }
   return positive;
+}
+
+// Moves segment `from` of the batch to slot `to` (to <= from).
+inline void moveSegment(RTCRay16* packets, std::size_t from, std::size_t to) {
+  const RTCRay16& source = packets[from / 16];
+  RTCRay16& target = packets[to / 16];
+  const std::size_t f = from % 16, t = to % 16;
+  target.org_x[t] = source.org_x[f];
+  target.org_y[t] = source.org_y[f];
+  target.org_z[t] = source.org_z[f];
+  target.dir_x[t] = source.dir_x[f];
+  target.dir_y[t] = source.dir_y[f];
+  target.dir_z[t] = source.dir_z[f];
+  target.tfar[t] = source.tfar[f];
 }
 
 // Moves the points whose kernel is nonzero to the front of the columns s, t, u, v, g, in
@@ -114,12 +131,6 @@ void CouplingAccumulator::streamed(const Link& link, const PointStream& points, 
   double* __restrict pu = column[kU];
   double* __restrict pv = column[kV];
   double* __restrict g = column[kKernel];
-  const double* __restrict ox = column[kOriginX];
-  const double* __restrict oy = column[kOriginY];
-  const double* __restrict oz = column[kOriginZ];
-  const double* __restrict dx = column[kToX];
-  const double* __restrict dy = column[kToY];
-  const double* __restrict dz = column[kToZ];
   if (occluded) rayPairs_.resize(kPointBlock);
   contraction_.begin(degree);
   std::uint64_t cast = 0, blocked = 0;
@@ -127,30 +138,16 @@ void CouplingAccumulator::streamed(const Link& link, const PointStream& points, 
   for (std::size_t start = 0; start < count; start += kPointBlock) {
     const std::size_t rows = std::min(kPointBlock, count - start);
     points.fill(start, rows, ps, pt, pu, pv);
+    if (occluded) segments_.resize(rows);
     const std::size_t positive =
-        occluded ? placeAndEvaluate<true>(receiverFrame, sourceFrame, rows, column)
-                 : placeAndEvaluate<false>(receiverFrame, sourceFrame, rows, column);
+        occluded
+            ? placeAndEvaluate<true>(receiverFrame, sourceFrame, rows, column, segments_.packets())
+            : placeAndEvaluate<false>(receiverFrame, sourceFrame, rows, column, nullptr);
     std::size_t kept = rows;
     if (occluded) {
-      // One ray per point whose unoccluded kernel is positive, written into the packets.
-      std::size_t rays = 0;
+      // One ray per point whose unoccluded kernel is positive, already in the packets.
+      std::size_t rays = rows;
       if (positive == rows) {
-        segments_.resize(rows);
-        for (std::size_t p = 0; p < segments_.packetCount(); ++p) {
-          RTCRay16& packet = segments_.packets()[p];
-          const std::size_t first = 16 * p;
-          const std::size_t lanes = std::min<std::size_t>(16, rows - first);
-          for (std::size_t lane = 0; lane < lanes; ++lane) {
-            packet.org_x[lane] = float(ox[first + lane]);
-            packet.org_y[lane] = float(oy[first + lane]);
-            packet.org_z[lane] = float(oz[first + lane]);
-            packet.dir_x[lane] = float(dx[first + lane]);
-            packet.dir_y[lane] = float(dy[first + lane]);
-            packet.dir_z[lane] = float(dz[first + lane]);
-            packet.tfar[lane] = 1.0f - kSegmentEpsilon;
-          }
-        }
-        rays = rows;
         link.occluders->trace(segments_);
         for (std::size_t p = 0; p < segments_.packetCount(); ++p) {
           const RTCRay16& packet = segments_.packet(p);
@@ -163,11 +160,12 @@ void CouplingAccumulator::streamed(const Link& link, const PointStream& points, 
           }
         }
       } else {
-        segments_.resize(rows);
+        // Keep only the rays of positive kernels, in order (as scattered() casts them).
+        rays = 0;
         for (std::size_t k = 0; k < rows; ++k) {
-          segments_.set(rays, ox[k], oy[k], oz[k], dx[k], dy[k], dz[k]);
-          rayPairs_[rays] = std::uint32_t(k);
-          rays += g[k] > 0.0 ? 1 : 0;
+          if (!(g[k] > 0.0)) continue;
+          moveSegment(segments_.packets(), k, rays);
+          rayPairs_[rays++] = std::uint32_t(k);
         }
         segments_.resize(rays);
         link.occluders->trace(segments_);
