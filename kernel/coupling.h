@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "kernel/block_contraction.h"
 #include "kernel/occluder_scene.h"
 #include "kernel/patch.h"
 #include "kernel/sample_points.h"
@@ -71,6 +72,11 @@ class CouplingAccumulator {
   // A general 4D point set.
   void scattered(const Link& link, const LinkSamples& samples, int degree, LinkIntegral& result);
 
+  // A 4D point set of equal weights produced block by block (the large random rules): the
+  // same sum as scattered() on the same points, fused per block of 256 points (draw, place,
+  // kernel, rays, contraction) so nothing of the 10,000 points goes through memory.
+  void streamed(const Link& link, const PointStream& points, int degree, LinkIntegral& result);
+
  private:
   void castRays(const Link& link, std::vector<double>& kernel, LinkIntegral& result);
   // Sizes the staging columns for `count` rays; traceStagedRays traces them (ray k belongs to
@@ -86,8 +92,9 @@ class CouplingAccumulator {
   std::vector<float> rayOriginX_, rayOriginY_, rayOriginZ_;
   std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_, rayFar_;
   SegmentBatch segments_;
-  Eigen::MatrixXd receiverBlock_, sourceBlock_;
-  std::vector<double> legendre_, weightedKernel_, sourceProducts_;
+  std::vector<double> weightedKernel_;
+  std::vector<double> streamBlock_;  // streamed(): the block's columns
+  detail::BlockContraction contraction_;
 };
 
 }  // namespace radquad

@@ -34,4 +34,17 @@ struct LinkSamples {
   }
 };
 
+// A 4D point set of equal weights 1/size(), produced block by block on request, so that a
+// large random rule (the 10,000-point reference) is integrated without storing its points
+// (CouplingAccumulator::streamed). The points are those of the rule's samples(seed), in the
+// same order.
+class PointStream {
+ public:
+  virtual ~PointStream() = default;
+  virtual std::size_t size() const = 0;
+  // Writes points first .. first + count - 1 (first + count <= size()) to s, t, u, v.
+  virtual void fill(std::size_t first, std::size_t count, double* s, double* t, double* u,
+                    double* v) const = 0;
+};
+
 }  // namespace radquad

@@ -34,8 +34,13 @@ void PreparedRule::integrate(const Link& link, std::uint64_t seed, CouplingAccum
     integrateSamples(link, fixedSamples_, &receiverBasis_, &sourceBasis_, accumulator, result);
     return;
   }
-  // Per-thread storage for the drawn points: the 10,000-point reference allocates nothing
-  // once warm.
+  // Rules that stream their points (Stratified:k, the reference) are integrated block by
+  // block without storing them.
+  if (const auto stream = rule_->pointStream(seed)) {
+    accumulator.streamed(link, *stream, degree_, result);
+    return;
+  }
+  // Per-thread storage for the drawn points: allocates nothing once warm.
   thread_local RuleSamples drawn;
   rule_->drawSamples(seed, drawn);
   if (drawn.isProduct) {

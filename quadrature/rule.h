@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -48,6 +49,9 @@ class Rule {
   virtual RuleSamples samples(std::uint64_t seed) const = 0;
   // The same points written into `out`, reusing its storage (the hot path of random rules).
   virtual void drawSamples(std::uint64_t seed, RuleSamples& out) const { out = samples(seed); }
+  // The same points, block by block, for rules of equal weights that can produce any range of
+  // their points on its own; null for the others. PreparedRule integrates through it.
+  virtual std::unique_ptr<PointStream> pointStream(std::uint64_t) const { return nullptr; }
 
   std::string toString() const;
 };

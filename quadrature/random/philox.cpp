@@ -1,5 +1,11 @@
 #include "quadrature/random/philox.h"
 
+#include <algorithm>
+#include <cstring>
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
 namespace radquad {
 namespace {
 
@@ -41,37 +47,133 @@ PhiloxCounter philox4x32(PhiloxCounter counter, PhiloxKey key) {
   return counter;
 }
 
+// The 64-byte vectors below never cross a non-inlined boundary with external linkage, so
+// GCC's note that their ABI differs without AVX-512 (a -march=native OFF build) is moot.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace {
+
+// Philox blocks side by side, one block per 64-bit lane of an 8-lane vector (GCC/Clang vector
+// extension). Only the low 32 bits of a lane are a word of the block: the round reads the
+// multiplicands' low halves only, so the high halves may carry junk and are never masked
+// inside the rounds.
+typedef std::uint64_t BlockLanes __attribute__((vector_size(64)));
+typedef double DoubleLanes __attribute__((vector_size(64)));
+constexpr int kBlockLanes = 8;
+
+// lo32(a) * m (m < 2^32) in every lane: Philox's 32 x 32 -> 64-bit product. AVX-512 has it as
+// one instruction (vpmuludq), which compilers do not find from the portable form; the
+// portable form is the fallback and gives the same bits.
+inline BlockLanes wideProduct(BlockLanes a, BlockLanes m) {
+#if defined(__AVX512F__)
+  return BlockLanes(_mm512_mul_epu32(__m512i(a), __m512i(m)));
+#else
+  return (a & 0xffffffffu) * m;
+#endif
+}
+
+// The ten rounds on G independent vectors of blocks (independent chains hide the multiply
+// latency); word w of the blocks of vector g is in c[w][g]. Same round as philoxRound.
+template <int G>
+inline void philoxRoundsOnLanes(BlockLanes (&c)[4][G], PhiloxKey key) {
+  const BlockLanes multiplier0 = BlockLanes{} + kMultiplier0;
+  const BlockLanes multiplier1 = BlockLanes{} + kMultiplier1;
+  std::uint32_t k0 = key[0], k1 = key[1];
+  for (int round = 0; round < 10; ++round) {
+    const BlockLanes key0 = BlockLanes{} + k0, key1 = BlockLanes{} + k1;
+#pragma GCC unroll 8
+    for (int g = 0; g < G; ++g) {
+      const BlockLanes product0 = wideProduct(c[0][g], multiplier0);
+      const BlockLanes product1 = wideProduct(c[2][g], multiplier1);
+      c[0][g] = (product1 >> 32) ^ c[1][g] ^ key0;
+      c[1][g] = product1;
+      c[2][g] = (product0 >> 32) ^ c[3][g] ^ key1;
+      c[3][g] = product0;
+    }
+    k0 += kWeyl0;
+    k1 += kWeyl1;
+  }
+}
+
+// Counters (first + lane, 0, stream, 0) of one vector of blocks.
+template <int G>
+inline void setCounters(BlockLanes (&c)[4][G], int g, BlockLanes first, std::uint32_t stream) {
+  c[0][g] = first + BlockLanes{0, 1, 2, 3, 4, 5, 6, 7};
+  c[1][g] = BlockLanes{};
+  c[2][g] = BlockLanes{} + stream;
+  c[3][g] = BlockLanes{};
+}
+
+// uniformFromWords(hi, lo) in every lane.
+inline DoubleLanes uniformLanes(BlockLanes hi, BlockLanes lo) {
+  const BlockLanes bits = ((hi << 32) | (lo & 0xffffffffu)) >> 11;
+  return __builtin_convertvector(bits, DoubleLanes) * 0x1.0p-53;
+}
+
+// The first `count` lanes to `to`: one vector store when all 8 are wanted.
+inline void storeLanes(double* to, DoubleLanes lanes, std::size_t count) {
+  if (count == kBlockLanes) {
+    std::memcpy(to, &lanes, sizeof(lanes));
+    return;
+  }
+  for (std::size_t lane = 0; lane < count; ++lane) to[lane] = lanes[lane];
+}
+
+}  // namespace
+
 void philoxBlocks(PhiloxKey key, std::uint32_t stream, std::uint32_t first, std::size_t count,
                   std::uint32_t* __restrict out) {
-  // Lanes of 16 blocks in registers; the compiler turns the rounds into vector multiplies.
-  constexpr std::size_t kLanes = 16;
+  constexpr int G = 2;
+  constexpr std::size_t kStep = G * kBlockLanes;
   std::size_t k = 0;
-  for (; k + kLanes <= count; k += kLanes) {
-    std::uint32_t c0[kLanes], c1[kLanes], c2[kLanes], c3[kLanes];
-    for (std::size_t lane = 0; lane < kLanes; ++lane) {
-      c0[lane] = first + std::uint32_t(k + lane);
-      c1[lane] = 0;
-      c2[lane] = stream;
-      c3[lane] = 0;
+  for (; k + kStep <= count; k += kStep) {
+    BlockLanes c[4][G];
+    for (int g = 0; g < G; ++g) {
+      setCounters(c, g, BlockLanes{} + std::uint32_t(first + k + g * kBlockLanes), stream);
     }
-    std::uint32_t k0 = key[0], k1 = key[1];
-    for (int round = 0; round < 10; ++round) {
-      for (std::size_t lane = 0; lane < kLanes; ++lane) {
-        philoxRound(c0[lane], c1[lane], c2[lane], c3[lane], k0, k1);
+    philoxRoundsOnLanes(c, key);
+    for (int g = 0; g < G; ++g) {
+      for (int lane = 0; lane < kBlockLanes; ++lane) {
+        for (int w = 0; w < 4; ++w) {
+          out[4 * (k + std::size_t(g * kBlockLanes + lane)) + std::size_t(w)] =
+              std::uint32_t(c[w][g][lane]);
+        }
       }
-      k0 += kWeyl0;
-      k1 += kWeyl1;
-    }
-    for (std::size_t lane = 0; lane < kLanes; ++lane) {
-      out[4 * (k + lane) + 0] = c0[lane];
-      out[4 * (k + lane) + 1] = c1[lane];
-      out[4 * (k + lane) + 2] = c2[lane];
-      out[4 * (k + lane) + 3] = c3[lane];
     }
   }
   for (; k < count; ++k) {
     const PhiloxCounter block = philox4x32({first + std::uint32_t(k), 0, stream, 0}, key);
     for (int w = 0; w < 4; ++w) out[4 * k + w] = block[w];
+  }
+}
+
+void philoxUniformQuads(PhiloxKey key, std::uint32_t stream, std::uint32_t firstPoint,
+                        std::size_t count, double* __restrict w01, double* __restrict w23,
+                        double* __restrict w45, double* __restrict w67) {
+  // Four vectors per step: even and odd blocks of points p..p+7 and of p+8..p+15.
+  constexpr int G = 4;
+  constexpr std::size_t kStep = 2 * kBlockLanes;
+  for (std::size_t p = 0; p < count; p += kStep) {
+    BlockLanes c[4][G];
+    for (int half = 0; half < 2; ++half) {
+      const BlockLanes point = BlockLanes{0, 1, 2, 3, 4, 5, 6, 7} +
+                               std::uint32_t(firstPoint + p + std::size_t(half) * kBlockLanes);
+      for (int odd = 0; odd < 2; ++odd) {
+        setCounters(c, 2 * half + odd, BlockLanes{}, stream);
+        c[0][2 * half + odd] = std::uint32_t(2) * point + std::uint32_t(odd);
+      }
+    }
+    philoxRoundsOnLanes(c, key);
+    for (int half = 0; half < 2; ++half) {
+      const std::size_t start = p + std::size_t(half) * kBlockLanes;
+      if (start >= count) break;
+      const std::size_t lanes = std::min<std::size_t>(kBlockLanes, count - start);
+      const int even = 2 * half, odd = 2 * half + 1;
+      storeLanes(w01 + start, uniformLanes(c[0][even], c[1][even]), lanes);
+      storeLanes(w23 + start, uniformLanes(c[2][even], c[3][even]), lanes);
+      storeLanes(w45 + start, uniformLanes(c[0][odd], c[1][odd]), lanes);
+      storeLanes(w67 + start, uniformLanes(c[2][odd], c[3][odd]), lanes);
+    }
   }
 }
 

@@ -30,9 +30,19 @@ inline PhiloxKey philoxKey(std::uint64_t seed) {
 }
 
 // Blocks for counters (first + k, 0, stream, 0), k = 0..count-1, written word-interleaved:
-// out[4k + w] = word w of block k. Structure-of-arrays so the compiler vectorises it.
+// out[4k + w] = word w of block k. Computed eight blocks per vector (philox.cpp).
 void philoxBlocks(PhiloxKey key, std::uint32_t stream, std::uint32_t first, std::size_t count,
                   std::uint32_t* out);
+
+// Four uniform doubles per point from the two blocks of the point, as the random rules draw
+// them: for point p = firstPoint + i, with B = block (2p, 0, stream, 0) and B' = block
+// (2p + 1, 0, stream, 0),
+//   w01[i] = uniformFromWords(B[0], B[1]),   w23[i] = uniformFromWords(B[2], B[3]),
+//   w45[i] = uniformFromWords(B'[0], B'[1]), w67[i] = uniformFromWords(B'[2], B'[3]),
+// the same values as philoxBlocks(key, stream, 2 firstPoint, 2 count, ...) converted word
+// pair by word pair, without storing the words. Requires 2 (firstPoint + count) <= 2^32.
+void philoxUniformQuads(PhiloxKey key, std::uint32_t stream, std::uint32_t firstPoint,
+                        std::size_t count, double* w01, double* w23, double* w45, double* w67);
 
 // A double in [0,1) from 53 random bits: (hi:lo >> 11) 2^-53.
 inline double uniformFromWords(std::uint32_t hi, std::uint32_t lo) {

@@ -1,7 +1,5 @@
 #include "quadrature/rules/monte_carlo.h"
 
-#include <vector>
-
 #include "quadrature/random/philox.h"
 
 namespace radquad {
@@ -18,18 +16,9 @@ std::string MonteCarloRule::citation() const {
 void MonteCarloRule::drawSamples(std::uint64_t seed, RuleSamples& out) const {
   const std::size_t count = std::size_t(count_);
   resizeEqualWeights(count, out);
-  thread_local std::vector<std::uint32_t> words;
-  words.resize(8 * count);
-  philoxBlocks(philoxKey(seed), std::uint32_t(RandomStream::kMonteCarlo), 0, 2 * count,
-               words.data());
   LinkSamples& p = out.points;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::uint32_t* w = words.data() + 8 * k;
-    p.s[k] = uniformFromWords(w[0], w[1]);
-    p.t[k] = uniformFromWords(w[2], w[3]);
-    p.u[k] = uniformFromWords(w[4], w[5]);
-    p.v[k] = uniformFromWords(w[6], w[7]);
-  }
+  philoxUniformQuads(philoxKey(seed), std::uint32_t(RandomStream::kMonteCarlo), 0, count,
+                     p.s.data(), p.t.data(), p.u.data(), p.v.data());
 }
 
 std::shared_ptr<const Rule> makeMonteCarloRule(const std::string& parameter) {

@@ -13,7 +13,8 @@
 // | `Stratified:k` | k^4     | k = 1..56 strata per axis |
 // Degree: none. Seed: the cell c = ((i_s k + i_t) k + i_u) k + i_v draws its jitter from
 // Philox blocks 2c and 2c+1 of stream kStratified, so the point of a cell depends only on
-// (seed, c). Points are listed in cell order.
+// (seed, c). Points are listed in cell order; pointStream(seed) gives the same points block
+// by block (any range of cells), which the reference integrates without storing them.
 #pragma once
 
 #include <memory>
@@ -32,6 +33,12 @@ class StratifiedRule : public RandomPointRule {
   std::string family() const override { return "Stratified Monte Carlo"; }
   std::string citation() const override;
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override;
+  std::unique_ptr<PointStream> pointStream(std::uint64_t seed) const override;
+
+  // Writes the points of cells first .. first + count - 1 of the draw `seed` (what
+  // samples(seed) lists at those indices) to s, t, u, v.
+  void fillPoints(std::uint64_t seed, std::size_t first, std::size_t count, double* s, double* t,
+                  double* u, double* v) const;
 
   int strataPerAxis() const { return strata_; }
 

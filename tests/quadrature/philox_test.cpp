@@ -33,6 +33,42 @@ TEST(Philox, BatchedBlocksEqualSingleBlocks) {
   }
 }
 
+// The vectorised paths on the first Random123 vector (counter 0, key 0): block 0 of stream 0.
+TEST(Philox, VectorisedPathsMatchRandom123KnownAnswer) {
+  std::vector<std::uint32_t> words(4 * 16);
+  philoxBlocks({0, 0}, 0, 0, 16, words.data());  // one full pass of the 8-lane vectors
+  EXPECT_EQ(words[0], 0x6627e8d5u);
+  EXPECT_EQ(words[1], 0xe169c58du);
+  EXPECT_EQ(words[2], 0xbc57ac4cu);
+  EXPECT_EQ(words[3], 0x9b00dbd8u);
+  double w01 = 0, w23 = 0, w45 = 0, w67 = 0;
+  philoxUniformQuads({0, 0}, 0, 0, 1, &w01, &w23, &w45, &w67);
+  EXPECT_EQ(w01, uniformFromWords(0x6627e8d5u, 0xe169c58du));
+  EXPECT_EQ(w23, uniformFromWords(0xbc57ac4cu, 0x9b00dbd8u));
+}
+
+// philoxUniformQuads against single scalar blocks: point p uses blocks 2p and 2p+1. Counts
+// that are not multiples of the 16 points per pass, and points near the top of the counter.
+TEST(Philox, UniformQuadsEqualSingleBlocks) {
+  const PhiloxKey key = philoxKey(0xfedcba9876543210ull);
+  for (const auto& [first, count] : {std::pair<std::uint32_t, std::size_t>{0, 1},
+                                     {1000, 37},
+                                     {5, 256},
+                                     {0x7fffffffu - 40, 41}}) {
+    std::vector<double> w01(count), w23(count), w45(count), w67(count);
+    philoxUniformQuads(key, 9, first, count, w01.data(), w23.data(), w45.data(), w67.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::uint32_t p = first + std::uint32_t(i);
+      const PhiloxCounter even = philox4x32({2 * p, 0, 9, 0}, key);
+      const PhiloxCounter odd = philox4x32({2 * p + 1, 0, 9, 0}, key);
+      ASSERT_EQ(w01[i], uniformFromWords(even[0], even[1])) << "point " << p;
+      ASSERT_EQ(w23[i], uniformFromWords(even[2], even[3])) << "point " << p;
+      ASSERT_EQ(w45[i], uniformFromWords(odd[0], odd[1])) << "point " << p;
+      ASSERT_EQ(w67[i], uniformFromWords(odd[2], odd[3])) << "point " << p;
+    }
+  }
+}
+
 TEST(Philox, UniformDoublesCoverTheUnitIntervalEvenly) {
   EXPECT_EQ(uniformFromWords(0, 0), 0.0);
   EXPECT_LT(uniformFromWords(0xffffffffu, 0xffffffffu), 1.0);

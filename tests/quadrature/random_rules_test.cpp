@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "quadrature/prepared_rule.h"
+#include "quadrature/random/philox.h"
+#include "quadrature/random/random_rule.h"
 #include "quadrature/registry.h"
 #include "tests/support/analytic_form_factors.h"
 
@@ -72,6 +74,53 @@ std::vector<std::string> randomRuleNames() {
     if (rule->isRandom()) names.push_back(rule->name());
   }
   return names;
+}
+
+// The reproducibility contract of Stratified:k written out with scalar code: cell
+// c = ((i_s k + i_t) k + i_u) k + i_v takes its jitter from Philox blocks 2c and 2c+1 of
+// stream kStratified under the seed's key, point = min((i + uniform) / k, 1 - 2^-53) per axis.
+// The rule's samples and its stream (any range of cells) must give exactly these points.
+TEST(Stratified, PointsFollowTheDocumentedStreamAndTheStreamMatchesTheSamples) {
+  for (const auto& [name, k] :
+       {std::pair{"Stratified", 3}, {"Stratified:7", 7}, {"Reference", 10}}) {
+    const auto rule = findRule(name);
+    const std::uint64_t seed = 0x5eed0000ull + std::uint64_t(k);
+    const RuleSamples samples = rule->samples(seed);
+    const std::size_t count = samples.size();
+    const double below = std::nextafter(1.0, 0.0);
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::uint32_t stream = std::uint32_t(RandomStream::kStratified);
+      const PhiloxCounter even = philox4x32({std::uint32_t(2 * c), 0, stream, 0}, philoxKey(seed));
+      const PhiloxCounter odd =
+          philox4x32({std::uint32_t(2 * c + 1), 0, stream, 0}, philoxKey(seed));
+      const std::size_t digits[4] = {c / std::size_t(k * k * k), c / std::size_t(k * k) % k,
+                                     c / std::size_t(k) % k, c % std::size_t(k)};
+      const double jitter[4] = {uniformFromWords(even[0], even[1]),
+                                uniformFromWords(even[2], even[3]),
+                                uniformFromWords(odd[0], odd[1]), uniformFromWords(odd[2], odd[3])};
+      const double* axes[4] = {samples.points.s.data(), samples.points.t.data(),
+                               samples.points.u.data(), samples.points.v.data()};
+      for (int axis = 0; axis < 4; ++axis) {
+        const double expected = std::min((double(digits[axis]) + jitter[axis]) * (1.0 / k), below);
+        ASSERT_EQ(axes[axis][c], expected) << name << " cell " << c << " axis " << axis;
+      }
+    }
+    const auto points = rule->pointStream(seed);
+    ASSERT_TRUE(points) << name;
+    ASSERT_EQ(points->size(), count);
+    for (const auto& [first, size] : {std::pair<std::size_t, std::size_t>{0, count},
+                                      {count / 3, count / 2 + 1},
+                                      {count - 1, 1}}) {
+      std::vector<double> s(size), t(size), u(size), v(size);
+      points->fill(first, size, s.data(), t.data(), u.data(), v.data());
+      for (std::size_t i = 0; i < size; ++i) {
+        ASSERT_EQ(s[i], samples.points.s[first + i]) << name << " point " << first + i;
+        ASSERT_EQ(t[i], samples.points.t[first + i]) << name << " point " << first + i;
+        ASSERT_EQ(u[i], samples.points.u[first + i]) << name << " point " << first + i;
+        ASSERT_EQ(v[i], samples.points.v[first + i]) << name << " point " << first + i;
+      }
+    }
+  }
 }
 
 TEST(RandomRules, SameSeedSamePointsOnEveryThreadAndDifferentSeedsDiffer) {
