@@ -36,25 +36,46 @@ double unoccludedKernel(const Patch& receiver, const Eigen::Vector3d& x, const P
 }
 
 void CouplingAccumulator::stageRays(std::size_t count) {
+  // Whole packets: traceStagedRays moves 16 lanes at a time.
+  const std::size_t lanes = (count + 15) / 16 * 16;
   for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_, &rayDirectionY_,
-                       &rayDirectionZ_, &rayFar_}) {
-    column->resize(count);
+                       &rayDirectionZ_}) {
+    column->resize(lanes);
   }
 }
 
 void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
                                           LinkIntegral& result) {
-  segments_.assign(count, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
-                   rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
+  // Fixed 16-lane moves into the packets (lanes past `count` are traced by no one), and tfar
+  // reset: the only field Embree writes. The other fields keep the values SegmentBatch gave
+  // them.
+  segments_.resize(count);
+  RTCRay16* __restrict packets = segments_.packets();
+  const std::size_t packetCount = segments_.packetCount();
+  constexpr std::size_t kBytes = 16 * sizeof(float);
+  for (std::size_t p = 0; p < packetCount; ++p) {
+    RTCRay16& packet = packets[p];
+    const std::size_t start = p * 16;
+    std::memcpy(packet.org_x, rayOriginX_.data() + start, kBytes);
+    std::memcpy(packet.org_y, rayOriginY_.data() + start, kBytes);
+    std::memcpy(packet.org_z, rayOriginZ_.data() + start, kBytes);
+    std::memcpy(packet.dir_x, rayDirectionX_.data() + start, kBytes);
+    std::memcpy(packet.dir_y, rayDirectionY_.data() + start, kBytes);
+    std::memcpy(packet.dir_z, rayDirectionZ_.data() + start, kBytes);
+    for (int lane = 0; lane < 16; ++lane) packet.tfar[lane] = 1.0f - kSegmentEpsilon;
+  }
   link.occluders->trace(segments_);
-  segments_.farEnds(rayFar_.data());
+  // Embree sets tfar to -inf in the lanes it finds blocked; unused lanes keep 1 - epsilon.
   std::uint64_t blocked = 0;
-  const float* __restrict far = rayFar_.data();
   double* __restrict kernel = kernel_.data();
-  for (std::size_t k = 0; k < count; ++k) {
-    const bool visible = far[k] >= 0.0f;
-    kernel[k] = visible ? kernel[k] : 0.0;
-    blocked += visible ? 0 : 1;
+  for (std::size_t p = 0; p < packetCount; ++p) {
+    const float* __restrict far = packets[p].tfar;
+    double* __restrict values = kernel + p * 16;
+    for (int lane = 0; lane < 16; ++lane) {
+      const bool visible = far[lane] >= 0.0f;
+      values[lane] = visible ? values[lane] : 0.0;
+      blocked += visible ? 0 : 1;
+    }
   }
   result.raysCast = count;
   result.raysBlocked = blocked;
@@ -219,6 +240,79 @@ constexpr ContractFunction kContractSourceLast[kMaxBasisDegree + 1] = {
     contractProductSourceLast<16>, contractProductSourceLast<25>, contractProductSourceLast<36>,
     contractProductSourceLast<49>, contractProductSourceLast<64>, contractProductSourceLast<81>};
 
+// Columns of placed points, receiver or source side (placePoints).
+struct PlacedPoints {
+  const double* x;
+  const double* y;
+  const double* z;
+  const double* ownNormalDot;
+  const double* otherNormalDot;
+};
+
+// Columns of float rays, ray k = i ns + j from receiver point i to source point j.
+struct StagedRays {
+  float* originX;
+  float* originY;
+  float* originZ;
+  float* directionX;
+  float* directionY;
+  float* directionZ;
+};
+
+// One receiver point's row: row[j] = pi G(x, x'_j) without visibility. Every pointer is a
+// parameter of its own so that the compiler knows they do not overlap and vectorises along j.
+inline void kernelRow(std::size_t ns, double x, double y, double z, double receiverOwn,
+                      double receiverSource, const double* __restrict sx,
+                      const double* __restrict sy, const double* __restrict sz,
+                      const double* __restrict sourceOwn, const double* __restrict sourceReceiver,
+                      double* __restrict row) {
+  for (std::size_t j = 0; j < ns; ++j) {
+    row[j] = kernelTimesPi(sx[j] - x, sy[j] - y, sz[j] - z, sourceReceiver[j] - receiverOwn,
+                           receiverSource - sourceOwn[j]);
+  }
+}
+
+// kernelRow, and the rays of the row's pairs: from (x, y, z) along x'_j - x, both rounded to
+// float from doubles.
+inline void kernelRowWithRays(std::size_t ns, double x, double y, double z, double receiverOwn,
+                              double receiverSource, const double* __restrict sx,
+                              const double* __restrict sy, const double* __restrict sz,
+                              const double* __restrict sourceOwn,
+                              const double* __restrict sourceReceiver, double* __restrict row,
+                              float* __restrict ox, float* __restrict oy, float* __restrict oz,
+                              float* __restrict dx, float* __restrict dy, float* __restrict dz) {
+  const float fx = float(x), fy = float(y), fz = float(z);
+  for (std::size_t j = 0; j < ns; ++j) {
+    const double ex = sx[j] - x, ey = sy[j] - y, ez = sz[j] - z;
+    row[j] =
+        kernelTimesPi(ex, ey, ez, sourceReceiver[j] - receiverOwn, receiverSource - sourceOwn[j]);
+    ox[j] = fx;
+    oy[j] = fy;
+    oz[j] = fz;
+    dx[j] = float(ex);
+    dy[j] = float(ey);
+    dz[j] = float(ez);
+  }
+}
+
+// kernel[i * ns + j] = pi G(x_i, x'_j) without visibility, with the ray of pair k = i ns + j
+// when `rays` is given.
+void evaluateKernel(const PlacedPoints& r, std::size_t nr, const PlacedPoints& s, std::size_t ns,
+                    double* kernel, const StagedRays* rays) {
+  for (std::size_t i = 0; i < nr; ++i) {
+    const std::size_t k = i * ns;
+    if (rays) {
+      kernelRowWithRays(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s.x,
+                        s.y, s.z, s.ownNormalDot, s.otherNormalDot, kernel + k, rays->originX + k,
+                        rays->originY + k, rays->originZ + k, rays->directionX + k,
+                        rays->directionY + k, rays->directionZ + k);
+    } else {
+      kernelRow(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s.x, s.y, s.z,
+                s.ownNormalDot, s.otherNormalDot, kernel + k);
+    }
+  }
+}
+
 }  // namespace
 
 void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver,
@@ -236,52 +330,26 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
   placePoints(s, source.u.data(), source.v.data(), ns, r.normal, sourceX_, sourceY_, sourceZ_,
               sourceNormalDot_, sourceReceiverDot_);
 
-  kernel_.resize(nr * ns);
-  {
-    const double* __restrict sx = sourceX_.data();
-    const double* __restrict sy = sourceY_.data();
-    const double* __restrict sz = sourceZ_.data();
-    const double* __restrict sOwn = sourceNormalDot_.data();
-    const double* __restrict sRec = sourceReceiverDot_.data();
-    for (std::size_t i = 0; i < nr; ++i) {
-      const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
-      const double receiverOwn = receiverNormalDot_[i];
-      const double receiverSrc = receiverSourceDot_[i];
-      double* __restrict row = kernel_.data() + i * ns;
-      for (std::size_t j = 0; j < ns; ++j) {
-        row[j] = kernelTimesPi(sx[j] - xi, sy[j] - yi, sz[j] - zi, sRec[j] - receiverOwn,
-                               receiverSrc - sOwn[j]);
-      }
-    }
-  }
-
+  const std::size_t pairs = nr * ns;
+  kernel_.resize((pairs + 15) / 16 * 16);  // whole packets for traceStagedRays
+  const PlacedPoints receiverPoints{receiverX_.data(), receiverY_.data(), receiverZ_.data(),
+                                    receiverNormalDot_.data(), receiverSourceDot_.data()};
+  const PlacedPoints sourcePoints{sourceX_.data(), sourceY_.data(), sourceZ_.data(),
+                                  sourceNormalDot_.data(), sourceReceiverDot_.data()};
   result.raysCast = 0;
   result.raysBlocked = 0;
-  if (link.hasOccluders()) {
-    const std::size_t pairs = nr * ns;
+  if (!link.hasOccluders()) {
+    evaluateKernel(receiverPoints, nr, sourcePoints, ns, kernel_.data(), nullptr);
+  } else {
+    stageRays(pairs);
+    const StagedRays staged{rayOriginX_.data(),    rayOriginY_.data(),    rayOriginZ_.data(),
+                            rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data()};
+    evaluateKernel(receiverPoints, nr, sourcePoints, ns, kernel_.data(), &staged);
     std::size_t positive = 0;
     for (std::size_t k = 0; k < pairs; ++k) positive += kernel_[k] > 0.0 ? 1 : 0;
     if (positive == pairs) {
-      // Every pair faces the other (the usual case): one ray per pair in pair order, filled
-      // and applied without branches.
-      stageRays(pairs);
-      for (std::size_t i = 0; i < nr; ++i) {
-        const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
-        float* __restrict ox = rayOriginX_.data() + i * ns;
-        float* __restrict oy = rayOriginY_.data() + i * ns;
-        float* __restrict oz = rayOriginZ_.data() + i * ns;
-        float* __restrict dx = rayDirectionX_.data() + i * ns;
-        float* __restrict dy = rayDirectionY_.data() + i * ns;
-        float* __restrict dz = rayDirectionZ_.data() + i * ns;
-        for (std::size_t j = 0; j < ns; ++j) {
-          ox[j] = float(xi);
-          oy[j] = float(yi);
-          oz[j] = float(zi);
-          dx[j] = float(sourceX_[j] - xi);
-          dy[j] = float(sourceY_[j] - yi);
-          dz[j] = float(sourceZ_[j] - zi);
-        }
-      }
+      // Every pair faces the other (the usual case): one ray per pair in pair order, staged
+      // with the kernel and applied without branches.
       traceStagedRays(link, pairs, result);
     } else {
       segments_.resize(positive);

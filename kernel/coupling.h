@@ -84,7 +84,7 @@ class CouplingAccumulator {
   std::vector<double> partial_;
   std::vector<std::uint32_t> rayPairs_;
   std::vector<float> rayOriginX_, rayOriginY_, rayOriginZ_;
-  std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_, rayFar_;
+  std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_;
   SegmentBatch segments_;
   Eigen::MatrixXd receiverBlock_, sourceBlock_;
   std::vector<double> legendre_, weightedKernel_, sourceProducts_;
