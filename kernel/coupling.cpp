@@ -259,39 +259,67 @@ struct StagedRays {
   float* directionZ;
 };
 
-// One receiver point's row: row[j] = pi G(x, x'_j) without visibility. Every pointer is a
-// parameter of its own so that the compiler knows they do not overlap and vectorises along j.
-inline void kernelRow(std::size_t ns, double x, double y, double z, double receiverOwn,
-                      double receiverSource, const double* __restrict sx,
-                      const double* __restrict sy, const double* __restrict sz,
-                      const double* __restrict sourceOwn, const double* __restrict sourceReceiver,
-                      double* __restrict row) {
-  for (std::size_t j = 0; j < ns; ++j) {
-    row[j] = kernelTimesPi(sx[j] - x, sy[j] - y, sz[j] - z, sourceReceiver[j] - receiverOwn,
-                           receiverSource - sourceOwn[j]);
-  }
+using Floats8 = float __attribute__((vector_size(32)));
+
+inline Lanes8 load8(const double* p) {
+  Lanes8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
 }
 
-// kernelRow, and the rays of the row's pairs: from (x, y, z) along x'_j - x, both rounded to
-// float from doubles.
-inline void kernelRowWithRays(std::size_t ns, double x, double y, double z, double receiverOwn,
-                              double receiverSource, const double* __restrict sx,
-                              const double* __restrict sy, const double* __restrict sz,
-                              const double* __restrict sourceOwn,
-                              const double* __restrict sourceReceiver, double* __restrict row,
-                              float* __restrict ox, float* __restrict oy, float* __restrict oz,
-                              float* __restrict dx, float* __restrict dy, float* __restrict dz) {
+// kernelTimesPi (coupling_internal.h) on eight pairs: the same operations in the same order.
+inline Lanes8 kernelTimesPi8(Lanes8 dx, Lanes8 dy, Lanes8 dz, Lanes8 receiverCos,
+                             Lanes8 sourceCos) {
+  const Lanes8 zero = {};
+  const Lanes8 r2 = dx * dx + dy * dy + dz * dz;
+  const Lanes8 c =
+      (receiverCos < zero ? zero : receiverCos) * (sourceCos < zero ? zero : sourceCos);
+  return c / (r2 * r2);
+}
+
+// One receiver point's row: row[j] = pi G(x, x'_j) without visibility, eight source points at a
+// time. With Rays, also the rays of the row's pairs: from (x, y, z) along x'_j - x, both
+// rounded to float from doubles.
+template <bool Rays>
+inline void kernelRow(std::size_t ns, double x, double y, double z, double receiverOwn,
+                      double receiverSource, const PlacedPoints& source, double* __restrict row,
+                      const StagedRays& rays, std::size_t first) {
   const float fx = float(x), fy = float(y), fz = float(z);
-  for (std::size_t j = 0; j < ns; ++j) {
-    const double ex = sx[j] - x, ey = sy[j] - y, ez = sz[j] - z;
-    row[j] =
-        kernelTimesPi(ex, ey, ez, sourceReceiver[j] - receiverOwn, receiverSource - sourceOwn[j]);
-    ox[j] = fx;
-    oy[j] = fy;
-    oz[j] = fz;
-    dx[j] = float(ex);
-    dy[j] = float(ey);
-    dz[j] = float(ez);
+  std::size_t j = 0;
+  for (; j + kLanes <= ns; j += kLanes) {
+    const Lanes8 dx = load8(source.x + j) - x;
+    const Lanes8 dy = load8(source.y + j) - y;
+    const Lanes8 dz = load8(source.z + j) - z;
+    const Lanes8 g = kernelTimesPi8(dx, dy, dz, load8(source.otherNormalDot + j) - receiverOwn,
+                                    receiverSource - load8(source.ownNormalDot + j));
+    std::memcpy(row + j, &g, sizeof g);
+    if constexpr (Rays) {
+      const std::size_t k = first + j;
+      const Floats8 ox = Floats8{} + fx, oy = Floats8{} + fy, oz = Floats8{} + fz;
+      const Floats8 ex = __builtin_convertvector(dx, Floats8);
+      const Floats8 ey = __builtin_convertvector(dy, Floats8);
+      const Floats8 ez = __builtin_convertvector(dz, Floats8);
+      std::memcpy(rays.originX + k, &ox, sizeof ox);
+      std::memcpy(rays.originY + k, &oy, sizeof oy);
+      std::memcpy(rays.originZ + k, &oz, sizeof oz);
+      std::memcpy(rays.directionX + k, &ex, sizeof ex);
+      std::memcpy(rays.directionY + k, &ey, sizeof ey);
+      std::memcpy(rays.directionZ + k, &ez, sizeof ez);
+    }
+  }
+  for (; j < ns; ++j) {
+    const double dx = source.x[j] - x, dy = source.y[j] - y, dz = source.z[j] - z;
+    row[j] = kernelTimesPi(dx, dy, dz, source.otherNormalDot[j] - receiverOwn,
+                           receiverSource - source.ownNormalDot[j]);
+    if constexpr (Rays) {
+      const std::size_t k = first + j;
+      rays.originX[k] = fx;
+      rays.originY[k] = fy;
+      rays.originZ[k] = fz;
+      rays.directionX[k] = float(dx);
+      rays.directionY[k] = float(dy);
+      rays.directionZ[k] = float(dz);
+    }
   }
 }
 
@@ -302,13 +330,11 @@ void evaluateKernel(const PlacedPoints& r, std::size_t nr, const PlacedPoints& s
   for (std::size_t i = 0; i < nr; ++i) {
     const std::size_t k = i * ns;
     if (rays) {
-      kernelRowWithRays(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s.x,
-                        s.y, s.z, s.ownNormalDot, s.otherNormalDot, kernel + k, rays->originX + k,
-                        rays->originY + k, rays->originZ + k, rays->directionX + k,
-                        rays->directionY + k, rays->directionZ + k);
+      kernelRow<true>(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s,
+                      kernel + k, *rays, k);
     } else {
-      kernelRow(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s.x, s.y, s.z,
-                s.ownNormalDot, s.otherNormalDot, kernel + k);
+      kernelRow<false>(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s,
+                       kernel + k, {}, k);
     }
   }
 }
