@@ -66,17 +66,29 @@ void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
   }
   link.occluders->trace(segments_);
   // Embree sets tfar to -inf in the lanes it finds blocked; unused lanes keep 1 - epsilon.
-  std::uint64_t blocked = 0;
+  // Eight lanes at a time: the far ends widened to double select the kernel values, and the
+  // comparison masks (-1 per blocked lane) are summed.
+  using Floats8 = float __attribute__((vector_size(32)));
+  using Counts8 = std::int64_t __attribute__((vector_size(64)));
+  using Lanes8 = double __attribute__((vector_size(64)));
+  Counts8 negativeBlocked = {};
   double* __restrict kernel = kernel_.data();
   for (std::size_t p = 0; p < packetCount; ++p) {
-    const float* __restrict far = packets[p].tfar;
-    double* __restrict values = kernel + p * 16;
-    for (int lane = 0; lane < 16; ++lane) {
-      const bool visible = far[lane] >= 0.0f;
-      values[lane] = visible ? values[lane] : 0.0;
-      blocked += visible ? 0 : 1;
+    for (int half = 0; half < 2; ++half) {
+      Floats8 farFloat;
+      std::memcpy(&farFloat, packets[p].tfar + 8 * half, sizeof farFloat);
+      const Lanes8 far = __builtin_convertvector(farFloat, Lanes8);
+      double* values = kernel + p * 16 + 8 * half;
+      Lanes8 kept;
+      std::memcpy(&kept, values, sizeof kept);
+      const Counts8 blockedLanes = ~(far >= Lanes8{});  // as !(far >= 0), NaN blocked too
+      kept = blockedLanes ? Lanes8{} : kept;
+      std::memcpy(values, &kept, sizeof kept);
+      negativeBlocked += blockedLanes;
     }
   }
+  std::int64_t blocked = 0;
+  for (int lane = 0; lane < 8; ++lane) blocked -= negativeBlocked[lane];
   result.raysCast = count;
   result.raysBlocked = blocked;
 }
