@@ -51,8 +51,9 @@ void CouplingAccumulator::stageRays(std::size_t count) {
 
 void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
                                           LinkIntegral& result) {
-  // Fixed 16-lane moves into the packets (lanes past `count` are traced by no one), and tfar
-  // reset: the only field Embree writes. The other fields keep the values SegmentBatch gave
+  // Fixed 16-lane moves into the packets from the staging columns (padded to whole packets by
+  // stageRays; lanes past `count` are traced by no one), and tfar reset: the only field Embree
+  // writes. The other fields keep the values SegmentBatch gave
   // them.
   segments_.resize(count);
   RTCRay16* __restrict packets = segments_.packets();
@@ -70,30 +71,32 @@ void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
     for (int lane = 0; lane < 16; ++lane) packet.tfar[lane] = 1.0f - kSegmentEpsilon;
   }
   link.occluders->trace(segments_);
-  // Embree sets tfar to -inf in the lanes it finds blocked; unused lanes keep 1 - epsilon.
-  // Eight lanes at a time: the far ends widened to double select the kernel values, and the
-  // comparison masks (-1 per blocked lane) are summed.
+  // Embree sets tfar to -inf in the lanes it finds blocked. Eight rays at a time: the far
+  // ends widened to double select the kernel values, and the comparison masks (-1 per blocked
+  // ray) are summed; the last count % 8 rays one by one (the kernel has only `count` values).
   using Floats8 = float __attribute__((vector_size(32)));
   using Counts8 = std::int64_t __attribute__((vector_size(64)));
-  using Lanes8 = double __attribute__((vector_size(64)));
   Counts8 negativeBlocked = {};
   double* __restrict kernel = kernel_.data();
-  for (std::size_t p = 0; p < packetCount; ++p) {
-    for (int half = 0; half < 2; ++half) {
-      Floats8 farFloat;
-      std::memcpy(&farFloat, packets[p].tfar + 8 * half, sizeof farFloat);
-      const Lanes8 far = __builtin_convertvector(farFloat, Lanes8);
-      double* values = kernel + p * 16 + 8 * half;
-      Lanes8 kept;
-      std::memcpy(&kept, values, sizeof kept);
-      const Counts8 blockedLanes = ~(far >= Lanes8{});  // as !(far >= 0), NaN blocked too
-      kept = blockedLanes ? Lanes8{} : kept;
-      std::memcpy(values, &kept, sizeof kept);
-      negativeBlocked += blockedLanes;
-    }
+  const std::size_t grouped = count - count % 8;
+  for (std::size_t k = 0; k < grouped; k += 8) {
+    Floats8 farFloat;
+    std::memcpy(&farFloat, packets[k / 16].tfar + k % 16, sizeof farFloat);
+    const Lanes8 far = __builtin_convertvector(farFloat, Lanes8);
+    Lanes8 kept;
+    std::memcpy(&kept, kernel + k, sizeof kept);
+    const Counts8 blockedLanes = ~(far >= Lanes8{});  // as !(far >= 0), NaN blocked too
+    kept = blockedLanes ? Lanes8{} : kept;
+    std::memcpy(kernel + k, &kept, sizeof kept);
+    negativeBlocked += blockedLanes;
   }
   std::int64_t blocked = 0;
   for (int lane = 0; lane < 8; ++lane) blocked -= negativeBlocked[lane];
+  for (std::size_t k = grouped; k < count; ++k) {
+    const bool visible = segments_.visible(k);
+    kernel[k] = visible ? kernel[k] : 0.0;
+    blocked += visible ? 0 : 1;
+  }
   result.raysCast = count;
   result.raysBlocked = blocked;
 }
@@ -231,7 +234,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
               sourceNormalDot_, sourceReceiverDot_);
 
   const std::size_t pairs = nr * ns;
-  kernel_.resize((pairs + 15) / 16 * 16);  // whole packets for traceStagedRays
+  kernel_.resize(pairs);
   const PlacedPoints receiverPoints{receiverX_.data(), receiverY_.data(), receiverZ_.data(),
                                     receiverNormalDot_.data(), receiverSourceDot_.data()};
   const PlacedPoints sourcePoints{sourceX_.data(), sourceY_.data(), sourceZ_.data(),
