@@ -172,7 +172,8 @@ inline void kernelRow(std::size_t ns, double x, double y, double z, double recei
     std::memcpy(row + j, &g, sizeof g);
     if constexpr (Rays) {
       const std::size_t k = first + j;
-      const Floats8 ox = Floats8{} + fx, oy = Floats8{} + fy, oz = Floats8{} + fz;
+      // Broadcasts as fx - 0, which is fx even for -0 (0 + fx would give +0).
+      const Floats8 ox = fx - Floats8{}, oy = fy - Floats8{}, oz = fz - Floats8{};
       const Floats8 ex = __builtin_convertvector(dx, Floats8);
       const Floats8 ey = __builtin_convertvector(dy, Floats8);
       const Floats8 ez = __builtin_convertvector(dz, Floats8);
