@@ -8,10 +8,15 @@
 
 #include "kernel/coupling_internal.h"
 #include "kernel/legendre_basis.h"
+#include "kernel/product_contraction.h"
 
 namespace radquad {
 
+using detail::kContract;
+using detail::kContractSourceLast;
 using detail::kernelTimesPi;
+using detail::kLanes;
+using detail::Lanes8;
 using detail::placePoints;
 
 WeightedBasisTable makeWeightedBasisTable(const PatchSamples& samples, int degree) {
@@ -36,23 +41,59 @@ double unoccludedKernel(const Patch& receiver, const Eigen::Vector3d& x, const P
 }
 
 void CouplingAccumulator::stageRays(std::size_t count) {
+  // Whole packets: traceStagedRays moves 16 lanes at a time.
+  const std::size_t lanes = (count + 15) / 16 * 16;
   for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_, &rayDirectionY_,
-                       &rayDirectionZ_, &rayFar_}) {
-    column->resize(count);
+                       &rayDirectionZ_}) {
+    column->resize(lanes);
   }
 }
 
 void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
                                           LinkIntegral& result) {
-  segments_.assign(count, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
-                   rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
+  // Fixed 16-lane moves into the packets from the staging columns (padded to whole packets by
+  // stageRays; lanes past `count` are traced by no one), and tfar reset: the only field Embree
+  // writes. The other fields keep the values SegmentBatch gave
+  // them.
+  segments_.resize(count);
+  RTCRay16* __restrict packets = segments_.packets();
+  const std::size_t packetCount = segments_.packetCount();
+  constexpr std::size_t kBytes = 16 * sizeof(float);
+  for (std::size_t p = 0; p < packetCount; ++p) {
+    RTCRay16& packet = packets[p];
+    const std::size_t start = p * 16;
+    std::memcpy(packet.org_x, rayOriginX_.data() + start, kBytes);
+    std::memcpy(packet.org_y, rayOriginY_.data() + start, kBytes);
+    std::memcpy(packet.org_z, rayOriginZ_.data() + start, kBytes);
+    std::memcpy(packet.dir_x, rayDirectionX_.data() + start, kBytes);
+    std::memcpy(packet.dir_y, rayDirectionY_.data() + start, kBytes);
+    std::memcpy(packet.dir_z, rayDirectionZ_.data() + start, kBytes);
+    for (int lane = 0; lane < 16; ++lane) packet.tfar[lane] = 1.0f - kSegmentEpsilon;
+  }
   link.occluders->trace(segments_);
-  segments_.farEnds(rayFar_.data());
-  std::uint64_t blocked = 0;
-  const float* __restrict far = rayFar_.data();
+  // Embree sets tfar to -inf in the lanes it finds blocked. Eight rays at a time: the far
+  // ends widened to double select the kernel values, and the comparison masks (-1 per blocked
+  // ray) are summed; the last count % 8 rays one by one (the kernel has only `count` values).
+  using Floats8 = float __attribute__((vector_size(32)));
+  using Counts8 = std::int64_t __attribute__((vector_size(64)));
+  Counts8 negativeBlocked = {};
   double* __restrict kernel = kernel_.data();
-  for (std::size_t k = 0; k < count; ++k) {
-    const bool visible = far[k] >= 0.0f;
+  const std::size_t grouped = count - count % 8;
+  for (std::size_t k = 0; k < grouped; k += 8) {
+    Floats8 farFloat;
+    std::memcpy(&farFloat, packets[k / 16].tfar + k % 16, sizeof farFloat);
+    const Lanes8 far = __builtin_convertvector(farFloat, Lanes8);
+    Lanes8 kept;
+    std::memcpy(&kept, kernel + k, sizeof kept);
+    const Counts8 blockedLanes = ~(far >= Lanes8{});  // as !(far >= 0), NaN blocked too
+    kept = blockedLanes ? Lanes8{} : kept;
+    std::memcpy(kernel + k, &kept, sizeof kept);
+    negativeBlocked += blockedLanes;
+  }
+  std::int64_t blocked = 0;
+  for (int lane = 0; lane < 8; ++lane) blocked -= negativeBlocked[lane];
+  for (std::size_t k = grouped; k < count; ++k) {
+    const bool visible = segments_.visible(k);
     kernel[k] = visible ? kernel[k] : 0.0;
     blocked += visible ? 0 : 1;
   }
@@ -76,75 +117,105 @@ void CouplingAccumulator::castRays(const Link& link, std::vector<double>& kernel
 
 namespace {
 
-// coupling (column-major F x F) = receiverBasis^T (nr x F) * (kernel (nr x ns) * sourceBasis
-// (ns x F)), with F known at compile time so the inner loops unroll into full vectors. Both
-// stages accumulate in registers: first each receiver point's row of the partial product,
-// then each column of the coupling.
-template <int F>
-void contractProduct(std::size_t nr, std::size_t ns, const double* __restrict kernel,
-                     const double* __restrict receiverBasis, const double* __restrict sourceBasis,
-                     double* __restrict partial, double* __restrict coupling) {
+// Columns of placed points, receiver or source side (placePoints).
+struct PlacedPoints {
+  const double* x;
+  const double* y;
+  const double* z;
+  const double* ownNormalDot;
+  const double* otherNormalDot;
+};
+
+// Columns of float rays, ray k = i ns + j from receiver point i to source point j.
+struct StagedRays {
+  float* originX;
+  float* originY;
+  float* originZ;
+  float* directionX;
+  float* directionY;
+  float* directionZ;
+};
+
+using Floats8 = float __attribute__((vector_size(32)));
+
+inline Lanes8 load8(const double* p) {
+  Lanes8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// kernelTimesPi (coupling_internal.h) on eight pairs: the same operations in the same order.
+inline Lanes8 kernelTimesPi8(Lanes8 dx, Lanes8 dy, Lanes8 dz, Lanes8 receiverCos,
+                             Lanes8 sourceCos) {
+  const Lanes8 zero = {};
+  const Lanes8 r2 = dx * dx + dy * dy + dz * dz;
+  const Lanes8 c =
+      (receiverCos < zero ? zero : receiverCos) * (sourceCos < zero ? zero : sourceCos);
+  return c / (r2 * r2);
+}
+
+// One receiver point's row: row[j] = pi G(x, x'_j) without visibility, eight source points at a
+// time. With Rays, also the rays of the row's pairs: from (x, y, z) along x'_j - x, both
+// rounded to float from doubles.
+template <bool Rays>
+inline void kernelRow(std::size_t ns, double x, double y, double z, double receiverOwn,
+                      double receiverSource, const PlacedPoints& source, double* __restrict row,
+                      const StagedRays& rays, std::size_t first) {
+  const float fx = float(x), fy = float(y), fz = float(z);
+  std::size_t j = 0;
+  for (; j + kLanes <= ns; j += kLanes) {
+    const Lanes8 dx = load8(source.x + j) - x;
+    const Lanes8 dy = load8(source.y + j) - y;
+    const Lanes8 dz = load8(source.z + j) - z;
+    const Lanes8 g = kernelTimesPi8(dx, dy, dz, load8(source.otherNormalDot + j) - receiverOwn,
+                                    receiverSource - load8(source.ownNormalDot + j));
+    std::memcpy(row + j, &g, sizeof g);
+    if constexpr (Rays) {
+      const std::size_t k = first + j;
+      // Broadcasts as fx - 0, which is fx even for -0 (0 + fx would give +0).
+      const Floats8 ox = fx - Floats8{}, oy = fy - Floats8{}, oz = fz - Floats8{};
+      const Floats8 ex = __builtin_convertvector(dx, Floats8);
+      const Floats8 ey = __builtin_convertvector(dy, Floats8);
+      const Floats8 ez = __builtin_convertvector(dz, Floats8);
+      std::memcpy(rays.originX + k, &ox, sizeof ox);
+      std::memcpy(rays.originY + k, &oy, sizeof oy);
+      std::memcpy(rays.originZ + k, &oz, sizeof oz);
+      std::memcpy(rays.directionX + k, &ex, sizeof ex);
+      std::memcpy(rays.directionY + k, &ey, sizeof ey);
+      std::memcpy(rays.directionZ + k, &ez, sizeof ez);
+    }
+  }
+  for (; j < ns; ++j) {
+    const double dx = source.x[j] - x, dy = source.y[j] - y, dz = source.z[j] - z;
+    row[j] = kernelTimesPi(dx, dy, dz, source.otherNormalDot[j] - receiverOwn,
+                           receiverSource - source.ownNormalDot[j]);
+    if constexpr (Rays) {
+      const std::size_t k = first + j;
+      rays.originX[k] = fx;
+      rays.originY[k] = fy;
+      rays.originZ[k] = fz;
+      rays.directionX[k] = float(dx);
+      rays.directionY[k] = float(dy);
+      rays.directionZ[k] = float(dz);
+    }
+  }
+}
+
+// kernel[i * ns + j] = pi G(x_i, x'_j) without visibility, with the ray of pair k = i ns + j
+// when `rays` is given.
+void evaluateKernel(const PlacedPoints& r, std::size_t nr, const PlacedPoints& s, std::size_t ns,
+                    double* kernel, const StagedRays* rays) {
   for (std::size_t i = 0; i < nr; ++i) {
-    double row[F] = {};
-    const double* __restrict g = kernel + i * ns;
-    for (std::size_t j = 0; j < ns; ++j) {
-      const double* __restrict basis = sourceBasis + j * F;
-      for (int b = 0; b < F; ++b) row[b] += g[j] * basis[b];
+    const std::size_t k = i * ns;
+    if (rays) {
+      kernelRow<true>(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s,
+                      kernel + k, *rays, k);
+    } else {
+      kernelRow<false>(ns, r.x[i], r.y[i], r.z[i], r.ownNormalDot[i], r.otherNormalDot[i], s,
+                       kernel + k, {}, k);
     }
-    for (int b = 0; b < F; ++b) partial[i * F + b] = row[b];
-  }
-  for (int b = 0; b < F; ++b) {
-    double column[F] = {};
-    for (std::size_t i = 0; i < nr; ++i) {
-      const double p = partial[i * F + b];
-      const double* __restrict basis = receiverBasis + i * F;
-      for (int a = 0; a < F; ++a) column[a] += basis[a] * p;
-    }
-    for (int a = 0; a < F; ++a) coupling[b * F + a] = column[a];
   }
 }
-
-// The same product in the other order, coupling = (receiverBasis^T kernel) sourceBasis:
-// F nr ns + F ns F multiplications instead of nr ns F + F nr F, fewer when the source has
-// fewer points than the receiver (the adaptive rules of Gershbein 1995, section 5).
-// partial (F x ns, column j = sum_i kernel[i][j] receiverBasis[i]).
-template <int F>
-void contractProductSourceLast(std::size_t nr, std::size_t ns, const double* __restrict kernel,
-                               const double* __restrict receiverBasis,
-                               const double* __restrict sourceBasis, double* __restrict partial,
-                               double* __restrict coupling) {
-  for (std::size_t j = 0; j < ns; ++j) {
-    double column[F] = {};
-    for (std::size_t i = 0; i < nr; ++i) {
-      const double g = kernel[i * ns + j];
-      const double* __restrict basis = receiverBasis + i * F;
-      for (int a = 0; a < F; ++a) column[a] += basis[a] * g;
-    }
-    for (int a = 0; a < F; ++a) partial[j * F + a] = column[a];
-  }
-  for (int b = 0; b < F; ++b) {
-    double column[F] = {};
-    for (std::size_t j = 0; j < ns; ++j) {
-      const double weight = sourceBasis[j * F + b];
-      const double* __restrict p = partial + j * F;
-      for (int a = 0; a < F; ++a) column[a] += p[a] * weight;
-    }
-    for (int a = 0; a < F; ++a) coupling[b * F + a] = column[a];
-  }
-}
-
-using ContractFunction = void (*)(std::size_t, std::size_t, const double*, const double*,
-                                  const double*, double*, double*);
-
-// Indexed by basis degree d = 0..kMaxBasisDegree, F = (d+1)^2.
-constexpr ContractFunction kContract[kMaxBasisDegree + 1] = {
-    contractProduct<1>,  contractProduct<4>,  contractProduct<9>,
-    contractProduct<16>, contractProduct<25>, contractProduct<36>,
-    contractProduct<49>, contractProduct<64>, contractProduct<81>};
-constexpr ContractFunction kContractSourceLast[kMaxBasisDegree + 1] = {
-    contractProductSourceLast<1>,  contractProductSourceLast<4>,  contractProductSourceLast<9>,
-    contractProductSourceLast<16>, contractProductSourceLast<25>, contractProductSourceLast<36>,
-    contractProductSourceLast<49>, contractProductSourceLast<64>, contractProductSourceLast<81>};
 
 }  // namespace
 
@@ -163,52 +234,26 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
   placePoints(s, source.u.data(), source.v.data(), ns, r.normal, sourceX_, sourceY_, sourceZ_,
               sourceNormalDot_, sourceReceiverDot_);
 
-  kernel_.resize(nr * ns);
-  {
-    const double* __restrict sx = sourceX_.data();
-    const double* __restrict sy = sourceY_.data();
-    const double* __restrict sz = sourceZ_.data();
-    const double* __restrict sOwn = sourceNormalDot_.data();
-    const double* __restrict sRec = sourceReceiverDot_.data();
-    for (std::size_t i = 0; i < nr; ++i) {
-      const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
-      const double receiverOwn = receiverNormalDot_[i];
-      const double receiverSrc = receiverSourceDot_[i];
-      double* __restrict row = kernel_.data() + i * ns;
-      for (std::size_t j = 0; j < ns; ++j) {
-        row[j] = kernelTimesPi(sx[j] - xi, sy[j] - yi, sz[j] - zi, sRec[j] - receiverOwn,
-                               receiverSrc - sOwn[j]);
-      }
-    }
-  }
-
+  const std::size_t pairs = nr * ns;
+  kernel_.resize(pairs);
+  const PlacedPoints receiverPoints{receiverX_.data(), receiverY_.data(), receiverZ_.data(),
+                                    receiverNormalDot_.data(), receiverSourceDot_.data()};
+  const PlacedPoints sourcePoints{sourceX_.data(), sourceY_.data(), sourceZ_.data(),
+                                  sourceNormalDot_.data(), sourceReceiverDot_.data()};
   result.raysCast = 0;
   result.raysBlocked = 0;
-  if (link.hasOccluders()) {
-    const std::size_t pairs = nr * ns;
+  if (!link.hasOccluders()) {
+    evaluateKernel(receiverPoints, nr, sourcePoints, ns, kernel_.data(), nullptr);
+  } else {
+    stageRays(pairs);
+    const StagedRays staged{rayOriginX_.data(),    rayOriginY_.data(),    rayOriginZ_.data(),
+                            rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data()};
+    evaluateKernel(receiverPoints, nr, sourcePoints, ns, kernel_.data(), &staged);
     std::size_t positive = 0;
     for (std::size_t k = 0; k < pairs; ++k) positive += kernel_[k] > 0.0 ? 1 : 0;
     if (positive == pairs) {
-      // Every pair faces the other (the usual case): one ray per pair in pair order, filled
-      // and applied without branches.
-      stageRays(pairs);
-      for (std::size_t i = 0; i < nr; ++i) {
-        const double xi = receiverX_[i], yi = receiverY_[i], zi = receiverZ_[i];
-        float* __restrict ox = rayOriginX_.data() + i * ns;
-        float* __restrict oy = rayOriginY_.data() + i * ns;
-        float* __restrict oz = rayOriginZ_.data() + i * ns;
-        float* __restrict dx = rayDirectionX_.data() + i * ns;
-        float* __restrict dy = rayDirectionY_.data() + i * ns;
-        float* __restrict dz = rayDirectionZ_.data() + i * ns;
-        for (std::size_t j = 0; j < ns; ++j) {
-          ox[j] = float(xi);
-          oy[j] = float(yi);
-          oz[j] = float(zi);
-          dx[j] = float(sourceX_[j] - xi);
-          dy[j] = float(sourceY_[j] - yi);
-          dz[j] = float(sourceZ_[j] - zi);
-        }
-      }
+      // Every pair faces the other (the usual case): one ray per pair in pair order, staged
+      // with the kernel and applied without branches.
       traceStagedRays(link, pairs, result);
     } else {
       segments_.resize(positive);

@@ -90,7 +90,7 @@ class CouplingAccumulator {
   std::vector<double> partial_;
   std::vector<std::uint32_t> rayPairs_;
   std::vector<float> rayOriginX_, rayOriginY_, rayOriginZ_;
-  std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_, rayFar_;
+  std::vector<float> rayDirectionX_, rayDirectionY_, rayDirectionZ_;
   SegmentBatch segments_;
   std::vector<double> weightedKernel_;
   std::vector<double> streamBlock_;  // streamed(): the block's columns

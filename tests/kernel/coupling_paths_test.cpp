@@ -2,10 +2,12 @@
 // points, flattened into a 4D list, must give the same coupling through the scattered path
 // (the register-tiled contraction for degrees 1..3, a general matrix product above) as
 // through the product path (which contracts source-last when the source has fewer points
-// than the receiver, as the adaptive rules choose), with and without occluders.
+// than the receiver, as the adaptive rules choose), with and without occluders, at every
+// basis degree (each has its own compiled contraction).
 #include <gtest/gtest.h>
 
 #include "kernel/coupling.h"
+#include "kernel/legendre_basis.h"
 #include "quadrature/registry.h"
 #include "tests/kernel/test_links.h"
 #include "tests/support/flatten_samples.h"
@@ -31,7 +33,7 @@ TEST(CouplingPaths, ScatteredEqualsProductOnTheSamePoints) {
     const LinkSamples flat = flattenSamples(samples);
     for (const OccluderScene* occluders : {none, static_cast<const OccluderScene*>(&scene)}) {
       const Link link{receiver, source, occluders};
-      for (int degree = 0; degree <= 5; ++degree) {
+      for (int degree = 0; degree <= kMaxBasisDegree; ++degree) {
         const WeightedBasisTable receiverBasis = makeWeightedBasisTable(samples.receiver, degree);
         const WeightedBasisTable sourceBasis = makeWeightedBasisTable(samples.source, degree);
         LinkIntegral product, scattered;
