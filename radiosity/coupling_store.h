@@ -24,15 +24,14 @@ class CouplingStore {
   Eigen::Map<Eigen::MatrixXd> operator[](std::size_t link) {
     return Eigen::Map<Eigen::MatrixXd>(slot(link), functions_, functions_);
   }
-  const double* data(std::size_t link) const {
-    return const_cast<CouplingStore*>(this)->slot(link);
-  }
+  const double* data(std::size_t link) const { return slot(link); }
 
  private:
   struct FreeBlock {
     void operator()(double* block) const;
   };
-  double* slot(std::size_t link) {
+  // The blocks are owned by the store; a const store hands out read-only pointers (data).
+  double* slot(std::size_t link) const {
     return blocks_[link / slotsPerBlock_].get() + (link % slotsPerBlock_) * slotSize_;
   }
 

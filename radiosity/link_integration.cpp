@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 #include "kernel/legendre_basis.h"
 #include "radiosity/visibility.h"
@@ -76,8 +75,7 @@ LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::arr
   // times the points of all its source squares. Grouping them makes fewer, larger products
   // (and fuller ray packets) than one product per piece.
   std::stable_sort(pieces_.begin(), pieces_.end(), [](const Piece& a, const Piece& b) {
-    return std::tie(a.receiver.size, a.receiver.u0, a.receiver.v0) >
-           std::tie(b.receiver.size, b.receiver.u0, b.receiver.v0);
+    return a.receiver.key() > b.receiver.key();
   });
   const GaussSide& receiverSide = tables.side(rule[0], rule[1]);
   const GaussSide& sourceSide = tables.side(rule[2], rule[3]);
@@ -85,9 +83,7 @@ LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::arr
   coupling.setZero();
   for (std::size_t first = 0; first < pieces_.size();) {
     std::size_t last = first + 1;
-    while (last < pieces_.size() && pieces_[last].receiver.size == pieces_[first].receiver.size &&
-           pieces_[last].receiver.u0 == pieces_[first].receiver.u0 &&
-           pieces_[last].receiver.v0 == pieces_[first].receiver.v0) {
+    while (last < pieces_.size() && pieces_[last].receiver.key() == pieces_[first].receiver.key()) {
       ++last;
     }
     placeSide(receiverSide, rule[0], rule[1], pieces_[first].receiver, receiverPiece_, 0,

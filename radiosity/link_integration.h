@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "kernel/coupling.h"
@@ -51,6 +52,8 @@ class LinkIntegrator {
   // A square [u0, u0 + size] x [v0, v0 + size] of an element's parameter square.
   struct Square {
     double u0 = 0.0, v0 = 0.0, size = 1.0;
+    // Orders and groups the pieces by receiver square: larger squares first.
+    std::tuple<double, double, double> key() const { return {size, u0, v0}; }
   };
   struct Piece {
     Square receiver, source;
