@@ -127,25 +127,45 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
     result.visibility = LinkClass::kUnoccluded;
     return result;
   }
-  // Rays between stratum centres of the two elements, where the kernel is positive.
-  SegmentBatch segments;
+  // Rays between stratum centres of the two elements, where the kernel is positive. One
+  // visible ray settles the class (partial), so the pairs are traced a packet at a time in
+  // an order that spreads each packet over both elements (round c pairs receiver point i
+  // with source point (i + c) mod 16, so every round meets all points of each), stopping at
+  // the first packet with a visible ray; only an occluded link traces every pair.
   constexpr int n = kGridPoints;
-  for (int i = 0; i < n * n; ++i) {
-    const Vec x = receiver.pointAt((i / n + 0.5) / n, (i % n + 0.5) / n);
-    for (int j = 0; j < n * n; ++j) {
-      const Vec y = source.pointAt((j / n + 0.5) / n, (j % n + 0.5) / n);
-      if (unoccludedKernel(receiver, x, source, y) <= 0.0) continue;
-      segments.push(x, y - x);
+  constexpr int points = n * n;
+  std::array<Vec, points> x, y;
+  for (int i = 0; i < points; ++i) {
+    x[std::size_t(i)] = receiver.pointAt((i / n + 0.5) / n, (i % n + 0.5) / n);
+    y[std::size_t(i)] = source.pointAt((i / n + 0.5) / n, (i % n + 0.5) / n);
+  }
+  thread_local SegmentBatch segments;
+  segments.clear();
+  result.visibility = LinkClass::kOccluded;
+  auto traceBatch = [&] {
+    occluders_.trace(segments);
+    result.raysCast += segments.size();
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+      if (segments.visible(k)) return true;
+    }
+    segments.clear();
+    return false;
+  };
+  for (int round = 0; round < points; ++round) {
+    for (int i = 0; i < points; ++i) {
+      const Vec& from = x[std::size_t(i)];
+      const Vec& to = y[std::size_t((i + round) % points)];
+      if (unoccludedKernel(receiver, from, source, to) <= 0.0) continue;
+      segments.push(from, to - from);
+      if (segments.size() == 16 && traceBatch()) {
+        result.visibility = LinkClass::kPartial;
+        return result;
+      }
     }
   }
-  result.raysCast = segments.size();
-  result.visibility = LinkClass::kPartial;
-  if (segments.size() == 0) return result;
-  std::vector<std::uint8_t> visible(segments.size());
-  occluders_.testSegments(segments, visible.data());
-  bool anyVisible = false;
-  for (std::uint8_t v : visible) anyVisible = anyVisible || v != 0;
-  if (!anyVisible) result.visibility = LinkClass::kOccluded;
+  if (segments.size() > 0 && traceBatch()) result.visibility = LinkClass::kPartial;
+  // No pair faces the other way round: nothing to trace, kept partial (conservative).
+  if (result.raysCast == 0) result.visibility = LinkClass::kPartial;
   return result;
 }
 

@@ -67,6 +67,54 @@ TEST(VisibilityTest, WallBetweenIsOccluded) {
   EXPECT_EQ(classifySquares(setup).visibility, LinkClass::kOccluded);
 }
 
+TEST(VisibilityTest, OneVisibleGridRayMakesThePartialClass) {
+  // A wall at z = 0.5 with a small hole where exactly one grid ray crosses: the ray from
+  // the receiver's grid point (u, v) = (0.875, 0.125) to the emitter's (0.125, 0.875), both
+  // at (x, y) = (0.125, 0.875); no other pair's midpoint is there. The classifier may stop
+  // at the first visible ray, so whatever its order it must find this one.
+  const Vec from = Vec::UnitZ() + 0.875 * Vec::UnitY() + 0.125 * Vec::UnitX();  // receiver
+  const Vec to = 0.125 * Vec::UnitX() + 0.875 * Vec::UnitY();                    // emitter
+  const Vec hole = 0.5 * (from + to);
+  const double half = 0.01;
+  const double lo = -1, hi = 2;
+  const Vec ex = Vec::UnitX(), ey = Vec::UnitY();
+  const ClassifierScene setup(squaresWith({
+      Patch::make(Vec(lo, lo, 0.5), (hi - lo) * ex, (hole.y() - half - lo) * ey, "below"),
+      Patch::make(Vec(lo, hole.y() + half, 0.5), (hi - lo) * ex, (hi - hole.y() - half) * ey,
+                  "above"),
+      Patch::make(Vec(lo, hole.y() - half, 0.5), (hole.x() - half - lo) * ex, 2 * half * ey,
+                  "left"),
+      Patch::make(Vec(hole.x() + half, hole.y() - half, 0.5), (hi - hole.x() - half) * ex,
+                  2 * half * ey, "right")}));
+  // Independent check that the hole passes this ray and no other of the 16 x 16 grid pairs.
+  int through = 0;
+  for (int i = 0; i < 16; ++i) {
+    for (int j = 0; j < 16; ++j) {
+      const Vec a = setup.scene.patches[1].patch.pointAt((i / 4 + 0.5) / 4, (i % 4 + 0.5) / 4);
+      const Vec b = setup.scene.patches[0].patch.pointAt((j / 4 + 0.5) / 4, (j % 4 + 0.5) / 4);
+      if (setup.occluders.segmentVisible(a, b)) ++through;
+    }
+  }
+  ASSERT_EQ(through, 1);
+  const Classification result = classifySquares(setup);
+  EXPECT_EQ(result.visibility, LinkClass::kPartial);
+  EXPECT_EQ(result.candidates.size(), 4u);
+}
+
+TEST(VisibilityTest, OnlyAnOccludedLinkTracesEveryPair) {
+  // Opposed squares: all 256 pairs face each other. A full wall blocks them all, and every
+  // one must be traced to call the link occluded; a speck blocks none, and the first packet
+  // of 16 already shows a visible ray.
+  const ClassifierScene wall(
+      squaresWith({Patch::make(Vec(-1, -1, 0.5), Vec(3, 0, 0), Vec(0, 3, 0), "wall")}));
+  EXPECT_EQ(classifySquares(wall).raysCast, 256u);
+  const ClassifierScene speck(squaresWith(
+      {Patch::make(Vec(0.01, 0.01, 0.5), Vec(0.005, 0, 0), Vec(0, 0.005, 0), "speck")}));
+  const Classification open = classifySquares(speck);
+  EXPECT_EQ(open.visibility, LinkClass::kPartial);
+  EXPECT_EQ(open.raysCast, 16u);
+}
+
 TEST(VisibilityTest, BackToBackPatchesDoNotExchange) {
   const Patch a = Patch::make(Vec::Zero(), Vec::UnitX(), Vec::UnitY(), "a");    // faces +z
   const Patch b = Patch::make(Vec(0, 0, -1), Vec::UnitX(), Vec::UnitY(), "b");  // faces +z
