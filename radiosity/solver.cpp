@@ -16,12 +16,16 @@
 #include "radiosity/coupling_store.h"
 #include "radiosity/gauss_tables.h"
 #include "radiosity/link_integration.h"
+#include "radiosity/source_projection.h"
 
 namespace radquad {
 
 struct Solver::Impl {
   Impl(const Scene& scene, int degree)
-      : tables(degree), classifier(scene, occluders), couplings((degree + 1) * (degree + 1)) {
+      : tables(degree),
+        classifier(scene, occluders),
+        couplings((degree + 1) * (degree + 1)),
+        projection(degree) {
     for (const ScenePatch& patch : scene.patches) occluders.addParallelogram(patch.patch);
     occluders.commit();
   }
@@ -30,6 +34,7 @@ struct Solver::Impl {
   VisibilityClassifier classifier;
   tbb::enumerable_thread_specific<LinkIntegrator> integrators;
   CouplingStore couplings;  // K of link k in slot k (rows receiver, columns source functions)
+  SourceProjection projection;
 };
 
 Solver::Solver(const Scene& scene, SolverOptions options)
@@ -282,6 +287,14 @@ void Solver::computeCouplings() {
     const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
         kernelLink, rule, impl_->tables, options_.singularDepth,
         impl_->couplings[std::size_t(link.slot)]);
+    // A product rule's coupling keeps the columns of its source points' orders only.
+    const int n = options_.degree + 1;
+    link.gatherPoints = {n, n};
+    if (!counts.composite) link.gatherPoints = {std::min(rule[2], n), std::min(rule[3], n)};
+    if (link.gatherPoints != std::array<int, 2>{n, n}) {
+      impl_->projection.compact(link.gatherPoints[0], link.gatherPoints[1],
+                                impl_->couplings[std::size_t(link.slot)].data());
+    }
     link.kernelEvaluations = counts.kernelEvaluations;
     link.rule = rule;
     link.computed = true;
@@ -309,47 +322,102 @@ void Solver::rebuildElementLinks() {
 
 namespace {
 
-// gathered += sum over the links of K (F x F) times the source's B (F x 3), with F known at
-// compile time (Eigen::Dynamic for other sizes) so that the small products unroll into
-// vector multiply-adds: a gather visits every link in every iteration.
+// gathered += sum over the links of K times the source's B, with F known at compile time
+// (Eigen::Dynamic for other sizes) so that the small products unroll into vector
+// multiply-adds: a gather visits every link in every iteration. A link that keeps every
+// column multiplies K (F x F) by B (F x 3); one that keeps the columns of its P source points
+// multiplies them (F x P) by the source's projection Bhat (P x 3, source_projection.h), which
+// reads and multiplies P / F of the coupling.
 template <int F>
 void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& couplings,
-                 const Hierarchy& hierarchy, Element& element) {
+                 const Hierarchy& hierarchy, const std::vector<std::ptrdiff_t>& offsets,
+                 const std::vector<double>& projections, Element& element) {
   const int functions = int(element.gathered.rows());
+  const int orders = hierarchy.degree() + 1;
   using Matrix = Eigen::Matrix<double, F, F>;
   using Block = Eigen::Matrix<double, F, 3>;
+  using Columns = Eigen::Matrix<double, F, Eigen::Dynamic>;
+  using Projection = Eigen::Matrix<double, Eigen::Dynamic, 3>;
   Block sum = Block::Zero(functions, 3);
   for (int index : element.links) {
     const SolverLink& link = links[std::size_t(index)];
     if (!link.computed) continue;  // its source had no radiosity yet
-    sum.noalias() +=
-        Eigen::Map<const Matrix>(couplings.data(std::size_t(link.slot)), functions, functions)
-            .lazyProduct(
-                Eigen::Map<const Block>(hierarchy[link.source].radiosity.data(), functions, 3));
+    const double* coupling = couplings.data(std::size_t(link.slot));
+    const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
+    if (pu == orders && pv == orders) {
+      sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)
+                           .lazyProduct(Eigen::Map<const Block>(
+                               hierarchy[link.source].radiosity.data(), functions, 3));
+    } else {
+      const std::ptrdiff_t offset =
+          offsets[std::size_t(link.source) * std::size_t(functions) +
+                  std::size_t((pu - 1) * orders + pv - 1)];
+      sum.noalias() += Eigen::Map<const Columns>(coupling, functions, pu * pv)
+                           .lazyProduct(Eigen::Map<const Projection>(
+                               projections.data() + offset, pu * pv, 3));
+    }
   }
   element.gathered = sum;
 }
 
 }  // namespace
 
+// The projections Bhat of every (source, source points) pair some link gathers through
+// (source_projection.h), from the sources' current radiosity.
+void Solver::projectSources() {
+  const int orders = options_.degree + 1;
+  const std::size_t shapes = std::size_t(orders * orders);
+  projectionOffset_.assign(hierarchy_->size() * shapes, -1);
+  for (const SolverLink& link : links_) {
+    if (!link.active || !link.computed) continue;
+    const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
+    if (pu == orders && pv == orders) continue;
+    projectionOffset_[std::size_t(link.source) * shapes + std::size_t((pu - 1) * orders + pv - 1)] =
+        0;
+  }
+  std::ptrdiff_t total = 0;
+  for (std::size_t k = 0; k < projectionOffset_.size(); ++k) {
+    if (projectionOffset_[k] < 0) continue;
+    projectionOffset_[k] = total;
+    const std::ptrdiff_t shape = std::ptrdiff_t(k % shapes);
+    total += (shape / orders + 1) * (shape % orders + 1) * 3;
+  }
+  projections_.resize(std::size_t(total));
+  tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
+    for (std::size_t shape = 0; shape < shapes; ++shape) {
+      const std::ptrdiff_t offset = projectionOffset_[e * shapes + shape];
+      if (offset < 0) continue;
+      impl_->projection.project(int(shape) / orders + 1, int(shape) % orders + 1,
+                                (*hierarchy_)[int(e)].radiosity.data(),
+                                projections_.data() + offset);
+    }
+  });
+}
+
 // E_R = sum over R's links of K B_S (DESIGN.md: E_a = sum_b K[a][b] B_b), with every
 // source's radiosity from the previous iteration (Jacobi).
 void Solver::gather() {
+  projectSources();
   const int functions = hierarchy_->functions();
   const CouplingStore& couplings = impl_->couplings;
   tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
     Element& element = (*hierarchy_)[int(e)];
     switch (functions) {
       case 1:
-        return gatherLinks<1>(links_, couplings, *hierarchy_, element);
+        return gatherLinks<1>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                              element);
       case 4:
-        return gatherLinks<4>(links_, couplings, *hierarchy_, element);
+        return gatherLinks<4>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                              element);
       case 9:
-        return gatherLinks<9>(links_, couplings, *hierarchy_, element);
+        return gatherLinks<9>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                              element);
       case 16:
-        return gatherLinks<16>(links_, couplings, *hierarchy_, element);
+        return gatherLinks<16>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                               element);
       default:
-        return gatherLinks<Eigen::Dynamic>(links_, couplings, *hierarchy_, element);
+        return gatherLinks<Eigen::Dynamic>(links_, couplings, *hierarchy_, projectionOffset_,
+                                           projections_, element);
     }
   });
 }

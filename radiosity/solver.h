@@ -7,6 +7,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -83,6 +84,10 @@ struct SolverLink {
   int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
   std::array<int, 4> rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
   std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
+  // The source points {pu, pv} whose columns the stored coupling keeps (source_projection.h):
+  // min(Su, d+1), min(Sv, d+1) for a product rule, {d+1, d+1} (every column) for a
+  // composite one.
+  std::array<int, 2> gatherPoints = {0, 0};
   std::uint64_t kernelEvaluations = 0;       // of the last computation
   std::vector<int> candidates;               // candidate occluders (patch indices)
 };
@@ -134,6 +139,7 @@ class Solver {
   std::array<int, 4> chooseRule(const SolverLink& link) const;
   void updateSourcePoints();
   void computeCouplings();
+  void projectSources();
   void gather();
   double pushPull();
   void rebuildElementLinks();
@@ -146,6 +152,10 @@ class Solver {
   std::vector<SolverLink> links_;
   std::vector<std::array<int, 2>> sourcePoints_;  // per element, see updateSourcePoints
   std::vector<int> freeSlots_;  // coupling store slots of links since refined, for reuse
+  // gather(): the sources' projections Bhat, at projectionOffset_[element * (d+1)^2 + shape]
+  // (shape (pu - 1) * (d+1) + pv - 1; -1 where no link gathers through it).
+  std::vector<std::ptrdiff_t> projectionOffset_;
+  std::vector<double> projections_;
   SolveStatistics statistics_;
   double minArea_ = 0.0;
   double radiosityScale_ = 0.0;  // the emitted power over the total area

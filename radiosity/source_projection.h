@@ -1,0 +1,52 @@
+// Gathering through a product rule's source points: the coupling of a Gauss product rule with
+// pu x pv points on the source keeps only pu x pv source functions' worth of information,
+// so the solver stores those columns and gathers against a projection of the source's
+// radiosity instead of all F columns against all F coefficients.
+//
+// Why it is exact. Along one source axis, let the rule have S <= d+1 Gauss points x_i,
+// weights w_i, and let phi_0..phi_d be the orthonormal shifted Legendre functions. The
+// coupling's columns are K[:, b] = sum_q A[:, q] w_q phi_b(q) (A the receiver-contracted
+// kernel at source point q), so every column is a combination of the point columns. For the
+// orders p < S the S x S matrix (phi_p(x_i)) satisfies sum_i w_i phi_p(x_i) phi_p'(x_i) =
+// delta_pp' (the rule is exact to degree 2S - 1 >= p + p'), hence it is invertible and
+//   K B = sum_{p < S} K[:, p] Bhat_p,   Bhat_p = sum_p' M_S[p][p'] B_p',
+//   M_S[p][p'] = sum_i w_i phi_p(x_i) phi_p'(x_i)   (p < S, p' <= d),
+// the rule's own projection of the source polynomial on the low orders (M_S[p][p'] =
+// delta_pp' for p' < S; the higher orders alias onto them). On the tensor rule this holds
+// along each axis, so K B = K_L Bhat with K_L the columns (p, q), p < pu, q < pv, and
+// Bhat = (M_pu x M_pv) B. With S = d+1 points, M is the identity and nothing changes.
+//
+// This holds for a product rule on the whole source element, partially occluded or not
+// (visibility is part of the kernel); not for the composite rules of touching elements,
+// whose source points lie in the pieces (those keep all F columns).
+#pragma once
+
+#include <vector>
+
+namespace radquad {
+
+class SourceProjection {
+ public:
+  explicit SourceProjection(int degree);
+
+  int degree() const { return degree_; }
+
+  // M_S[p][p'] for S points (1 <= S <= d+1), p < S, p' <= d.
+  double aliasing(int points, int p, int pPrime) const;
+
+  // Writes Bhat (pointsU * pointsV rows, index p * pointsV + q, times 3 channels,
+  // column-major) of `radiosity` ((d+1)^2 rows, index i * (d+1) + j, times 3, column-major).
+  // 1 <= pointsU, pointsV <= d+1.
+  void project(int pointsU, int pointsV, const double* radiosity, double* out) const;
+
+  // Keeps the columns (p, q), p < pointsU, q < pointsV, of a (d+1)^2 x (d+1)^2 column-major
+  // coupling, moved to the front in the order p * pointsV + q (in place).
+  void compact(int pointsU, int pointsV, double* coupling) const;
+
+ private:
+  int degree_;
+  // aliasing_[S - 1] holds M_S row-major: S rows of d+1 values.
+  std::vector<std::vector<double>> aliasing_;
+};
+
+}  // namespace radquad
