@@ -339,8 +339,21 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
   using Columns = Eigen::Matrix<double, F, Eigen::Dynamic>;
   using Projection = Eigen::Matrix<double, Eigen::Dynamic, 3>;
   Block sum = Block::Zero(functions, 3);
-  for (int index : element.links) {
-    const SolverLink& link = links[std::size_t(index)];
+  const std::vector<int>& indices = element.links;
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    // The links' records and couplings lie apart in memory: fetch those of the links a few
+    // places ahead while this one is multiplied.
+    if (k + 8 < indices.size()) __builtin_prefetch(&links[std::size_t(indices[k + 8])]);
+    if (k + 4 < indices.size()) {
+      const SolverLink& ahead = links[std::size_t(indices[k + 4])];
+      if (ahead.slot >= 0) {
+        const char* start = reinterpret_cast<const char*>(couplings.data(std::size_t(ahead.slot)));
+        const std::size_t bytes = std::size_t(functions) * std::size_t(ahead.gatherPoints[0]) *
+                                  std::size_t(ahead.gatherPoints[1]) * sizeof(double);
+        for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
+      }
+    }
+    const SolverLink& link = links[std::size_t(indices[k])];
     if (!link.computed) continue;  // its source had no radiosity yet
     const double* coupling = couplings.data(std::size_t(link.slot));
     const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
