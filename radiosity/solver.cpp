@@ -499,6 +499,11 @@ void Solver::solve() {
   }
   countLinks();
   statistics_.elapsedSeconds = elapsed();
+  // The solution is in the hierarchy; the couplings (about 1 GiB for a cubic cornell solve)
+  // are released so that a solver kept for its solution does not hold them.
+  impl_->couplings = CouplingStore(hierarchy_->functions());
+  freeSlots_.clear();
+  for (SolverLink& link : links_) link.slot = -1;
 }
 
 }  // namespace radquad

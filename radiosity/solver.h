@@ -116,7 +116,8 @@ class Solver {
   Solver(const Scene& scene, SolverOptions options);
   ~Solver();
 
-  // Runs refinement and iterations to convergence.
+  // Runs refinement and iterations to convergence, once per solver. The coupling matrices
+  // are released at the end (the links keep their rules and counts; their slots become -1).
   void solve();
 
   const Hierarchy& hierarchy() const { return *hierarchy_; }
