@@ -1,9 +1,11 @@
 #include "experiments/adaptive/adaptive_runs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 #include "experiments/atomic_file.h"
 #include "kernel/input_error.h"
@@ -68,14 +70,44 @@ nlohmann::json runJson(const Solver& solver) {
             {"occluded", s.occludedLinks}}}};
 }
 
-void addComparison(nlohmann::json& run, const Solver& solver, const Solver& fixed) {
+// The wall times of repeated solves of one configuration; the fastest is the measurement
+// (the others differ by what else the machine was doing).
+struct Timings {
+  std::vector<double> elapsed, coupling;
+
+  void add(const SolveStatistics& s) {
+    elapsed.push_back(s.elapsedSeconds);
+    coupling.push_back(s.couplingSeconds);
+  }
+  double bestElapsed() const { return *std::min_element(elapsed.begin(), elapsed.end()); }
+  double bestCoupling() const { return *std::min_element(coupling.begin(), coupling.end()); }
+};
+
+Timings timingsOf(const Solver& solver) {
+  Timings timings;
+  timings.add(solver.statistics());
+  return timings;
+}
+
+// Replaces the run's times by the fastest of `timings`, listing every run when repeated.
+void setTimes(nlohmann::json& run, const Timings& timings) {
+  run["elapsed_seconds"] = timings.bestElapsed();
+  run["coupling_seconds"] = timings.bestCoupling();
+  if (timings.elapsed.size() > 1) {
+    run["elapsed_seconds_runs"] = timings.elapsed;
+    run["coupling_seconds_runs"] = timings.coupling;
+  }
+}
+
+void addComparison(nlohmann::json& run, const Solver& solver, const Timings& times,
+                   const Solver& fixed, const Timings& fixedTimes) {
   const auto [difference, norm] = solver.hierarchy().l2Difference(fixed.hierarchy());
   const SolveStatistics& s = solver.statistics();
   const SolveStatistics& f = fixed.statistics();
   run["relative_l2_difference"] = norm > 0.0 ? difference / norm : 0.0;
   run["evaluation_ratio"] = double(f.kernelEvaluations) / double(s.kernelEvaluations);
-  run["time_ratio"] = f.elapsedSeconds / s.elapsedSeconds;
-  run["coupling_time_ratio"] = f.couplingSeconds / s.couplingSeconds;
+  run["time_ratio"] = fixedTimes.bestElapsed() / times.bestElapsed();
+  run["coupling_time_ratio"] = fixedTimes.bestCoupling() / times.bestCoupling();
 }
 
 // |a - b| per channel, linear.
@@ -125,6 +157,24 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
         solvers[choice] = solveWith(scene, sceneName, degree, choice, options.threshold,
                                     options.bfEpsilon, options.quiet);
       }
+      // More solves of each choice, interleaved, for the times only: a solve is deterministic,
+      // so a repeat must reproduce the first one's counts.
+      std::map<RuleChoice, Timings> timings;
+      for (RuleChoice choice : kChoices) timings[choice] = timingsOf(*solvers[choice]);
+      for (int repeat = 1; repeat < options.timingRepeats; ++repeat) {
+        for (RuleChoice choice : kChoices) {
+          const auto again = solveWith(scene, sceneName, degree, choice, options.threshold,
+                                       options.bfEpsilon, options.quiet);
+          const SolveStatistics& first = solvers[choice]->statistics();
+          const SolveStatistics& now = again->statistics();
+          if (now.kernelEvaluations != first.kernelEvaluations ||
+              now.couplingComputations != first.couplingComputations ||
+              now.iterations != first.iterations) {
+            throw std::logic_error("radquad adaptive: a repeated solve did not reproduce the first");
+          }
+          timings[choice].add(now);
+        }
+      }
       const Solver& fixed = *solvers[RuleChoice::kFixed];
       nlohmann::json row = {{"scene", sceneName},
                             {"degree", degree},
@@ -132,7 +182,10 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
                             {"report_observed", reportObserved(degree)}};
       for (RuleChoice choice : kChoices) {
         nlohmann::json run = runJson(*solvers[choice]);
-        if (choice != RuleChoice::kFixed) addComparison(run, *solvers[choice], fixed);
+        setTimes(run, timings[choice]);
+        if (choice != RuleChoice::kFixed) {
+          addComparison(run, *solvers[choice], timings[choice], fixed, timings[RuleChoice::kFixed]);
+        }
         row[ruleChoiceName(choice)] = run;
       }
       table.push_back(row);
@@ -155,7 +208,7 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
       const auto solver = solveWith(sweepScene, options.sweepScene, options.sweepDegree, choice,
                                     threshold, options.sweepBfEpsilon, options.quiet);
       nlohmann::json run = runJson(*solver);
-      addComparison(run, *solver, *fixed);
+      addComparison(run, *solver, timingsOf(*solver), *fixed, timingsOf(*fixed));
       run["threshold"] = threshold;
       run["rules"] = ruleChoiceName(choice);
       points.push_back(run);
@@ -178,6 +231,9 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
             {"sweep_degree", options.sweepDegree},
             {"sweep_bf_eps", options.sweepBfEpsilon},
             {"solver_defaults_otherwise", true},
+            {"timing_repeats", options.timingRepeats},
+            {"timing", "table times are the fastest of timing_repeats interleaved solves "
+                       "(all runs listed); sweep times are single solves"},
             {"difference",
              "area-weighted L2 norm of B - B_fixed over all surfaces, on the leaf "
              "polynomials, over the fixed solution's norm"}}},

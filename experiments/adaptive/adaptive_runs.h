@@ -26,6 +26,9 @@ struct AdaptiveRunOptions {
   std::string plateScene = "cornell";
   int plateDegree = 3;
   double differenceScale = 10.0;  // difference images show |B - B_fixed| times this
+  // Each table configuration is solved this many times (interleaved); its times are the
+  // fastest, as the machine's other load only ever adds time.
+  int timingRepeats = 3;
   bool quiet = false;
 };
 

@@ -88,6 +88,11 @@ void addAdaptiveCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--scenes", options->runs.scenes, "Built-in scenes of the table")
       ->capture_default_str();
+  command
+      ->add_option("--timing-repeats", options->runs.timingRepeats,
+                   "Solves of each table configuration; its times are the fastest")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   command->add_option("--results", options->resultsDir, "Directory of the JSON and the plate");
   command->add_option("--plots", options->plotsDir, "Directory of plots/adaptive.png");
   command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();

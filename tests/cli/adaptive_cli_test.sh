@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `radquad solve --rules adaptive --compare` through the real binary on a small scene: exit 0,
 # the comparison fields, a small difference from the fixed solution, fewer kernel
-# evaluations; bad rule options exit with status 2 and say which option.
+# evaluations; bad rule options exit with status 2 and say which option; `radquad adaptive`'s
+# timing repeats on a tiny table.
 # Usage: RADQUAD=PATH/TO/radquad adaptive_cli_test.sh (or the path as the first argument)
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/expect_status.sh"
@@ -36,6 +37,31 @@ PY
     echo "FAIL: $rules --compare output"; failures=$((failures + 1))
   fi
 done
+
+# `radquad adaptive` on a tiny table with two timing repeats: every run listed, the fastest
+# reported, the ratios from the fastest; a repeat count of 0 is refused.
+expect_status 2 "no timing repeats" "--timing-repeats" adaptive --timing-repeats 0
+mkdir -p "$work/adaptive"
+expect_status 0 "adaptive, two timing repeats" "" adaptive --scenes cornell --degrees 1 \
+  --bf-eps 1 --sweep 1 --sweep-bf-eps 1 --sweep-degree 1 --timing-repeats 2 \
+  --results "$work/adaptive" --plots "$work/adaptive" --quiet
+if ! /usr/bin/python3 - "$work/adaptive/adaptive.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+assert out["options"]["timing_repeats"] == 2, out["options"]
+row = out["table"][0]
+for choice in ("fixed", "adaptive", "adaptive-novis"):
+    run = row[choice]
+    assert len(run["elapsed_seconds_runs"]) == 2, run
+    assert run["elapsed_seconds"] == min(run["elapsed_seconds_runs"]), run
+    assert run["coupling_seconds"] == min(run["coupling_seconds_runs"]), run
+for choice in ("adaptive", "adaptive-novis"):
+    ratio = row["fixed"]["elapsed_seconds"] / row[choice]["elapsed_seconds"]
+    assert abs(row[choice]["time_ratio"] - ratio) <= 1e-12 * ratio, (row[choice], ratio)
+PY
+then
+  echo "FAIL: adaptive timing repeats"; failures=$((failures + 1))
+fi
 
 if [[ $failures -ne 0 ]]; then
   echo "$failures failure(s)"; exit 1
