@@ -15,19 +15,6 @@ std::array<Vec, 4> corners(const Patch& patch) {
           patch.origin + patch.edgeV};
 }
 
-// Whether every point of `outside` lies on or beyond the plane (n, offset), n.x >= offset -
-// tolerance counts as "on". Returns false if the plane does not bound `hull` on the other side.
-bool planeSeparates(const Vec& normal, double offset, const std::array<Vec, 8>& hull,
-                    const std::array<Vec, 4>& outside, double tolerance) {
-  for (const Vec& point : hull) {
-    if (normal.dot(point) > offset + tolerance) return false;  // not a supporting plane
-  }
-  for (const Vec& point : outside) {
-    if (normal.dot(point) < offset + tolerance) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 const char* linkClassName(LinkClass visibility) {
@@ -60,16 +47,61 @@ bool mayExchange(const Patch& receiver, const Patch& source) {
 VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderScene& occluders)
     : scene_(scene), occluders_(occluders) {}
 
-bool VisibilityClassifier::separated(const Patch& receiver, const Patch& source, int patch) const {
-  const std::array<Vec, 4> occluder = corners(scene_.patches[std::size_t(patch)].patch);
-  const std::array<Vec, 4> r = corners(receiver), s = corners(source);
-  const std::array<Vec, 8> hull = {r[0], r[1], r[2], r[3], s[0], s[1], s[2], s[3]};
-  Vec low = hull[0], high = hull[0];
-  for (const Vec& point : hull) {
-    low = low.cwiseMin(point);
-    high = high.cwiseMax(point);
+// A link's shaft: the convex hull of its two elements, with its bounding box and its
+// supporting planes through an edge of one element and a corner of the other (those with the
+// whole hull on one side, n.x <= offset + tolerance). Built once per link, then tested against
+// every candidate.
+struct VisibilityClassifier::Shaft {
+  const Patch* receiver = nullptr;
+  const Patch* source = nullptr;
+  Vec low, high;
+  double tolerance = 0.0;
+  int planes = 0;
+  std::array<Vec, 64> normals;  // 2 sides x 4 edges x 4 corners x 2 orientations at most
+  std::array<double, 64> offsets;
+
+  Shaft(const Patch& r, const Patch& s) : receiver(&r), source(&s) {
+    const std::array<Vec, 4> rc = corners(r), sc = corners(s);
+    const std::array<Vec, 8> hull = {rc[0], rc[1], rc[2], rc[3], sc[0], sc[1], sc[2], sc[3]};
+    low = hull[0];
+    high = hull[0];
+    for (const Vec& point : hull) {
+      low = low.cwiseMin(point);
+      high = high.cwiseMax(point);
+    }
+    tolerance = 1e-9 * std::max((high - low).norm(), 1e-300);
+    for (int side = 0; side < 2; ++side) {
+      const std::array<Vec, 4>& edges = side == 0 ? rc : sc;
+      const std::array<Vec, 4>& apexes = side == 0 ? sc : rc;
+      for (int k = 0; k < 4; ++k) {
+        const Vec& a = edges[std::size_t(k)];
+        const Vec& b = edges[std::size_t((k + 1) % 4)];
+        for (const Vec& apex : apexes) {
+          Vec normal = (b - a).cross(apex - a);
+          const double length = normal.norm();
+          if (length <= 1e-12 * (b - a).norm() * (apex - a).norm()) continue;
+          normal /= length;
+          // Either orientation may have the hull behind it.
+          addIfSupporting(normal, normal.dot(a), hull);
+          addIfSupporting(-normal, -normal.dot(a), hull);
+        }
+      }
+    }
   }
-  const double tolerance = 1e-9 * std::max((high - low).norm(), 1e-300);
+
+  void addIfSupporting(const Vec& normal, double offset, const std::array<Vec, 8>& hull) {
+    for (const Vec& point : hull) {
+      if (normal.dot(point) > offset + tolerance) return;  // not a supporting plane
+    }
+    normals[std::size_t(planes)] = normal;
+    offsets[std::size_t(planes)] = offset;
+    ++planes;
+  }
+};
+
+bool VisibilityClassifier::separated(const Shaft& shaft, int patch) const {
+  const std::array<Vec, 4> occluder = corners(scene_.patches[std::size_t(patch)].patch);
+  const double tolerance = shaft.tolerance;
   // Bounding boxes.
   Vec occluderLow = occluder[0], occluderHigh = occluder[0];
   for (const Vec& point : occluder) {
@@ -77,35 +109,25 @@ bool VisibilityClassifier::separated(const Patch& receiver, const Patch& source,
     occluderHigh = occluderHigh.cwiseMax(point);
   }
   for (int axis = 0; axis < 3; ++axis) {
-    if (occluderLow[axis] >= high[axis] - tolerance) return true;
-    if (occluderHigh[axis] <= low[axis] + tolerance) return true;
+    if (occluderLow[axis] >= shaft.high[axis] - tolerance) return true;
+    if (occluderHigh[axis] <= shaft.low[axis] + tolerance) return true;
   }
   // Behind (or on) the receiver's or the source's plane: the segments that carry energy
   // start on one element and end strictly in front of it, so they never reach there.
-  for (const Patch* plane : {&receiver, &source}) {
+  for (const Patch* plane : {shaft.receiver, shaft.source}) {
     bool allBehind = true;
     for (const Vec& point : occluder) {
       allBehind = allBehind && plane->normal.dot(point - plane->origin) <= tolerance;
     }
     if (allBehind) return true;
   }
-  // Shaft planes through an edge of one element and a corner of the other.
-  for (int side = 0; side < 2; ++side) {
-    const std::array<Vec, 4>& edges = side == 0 ? r : s;
-    const std::array<Vec, 4>& apexes = side == 0 ? s : r;
-    for (int k = 0; k < 4; ++k) {
-      const Vec& a = edges[std::size_t(k)];
-      const Vec& b = edges[std::size_t((k + 1) % 4)];
-      for (const Vec& apex : apexes) {
-        Vec normal = (b - a).cross(apex - a);
-        const double length = normal.norm();
-        if (length <= 1e-12 * (b - a).norm() * (apex - a).norm()) continue;
-        normal /= length;
-        // Orient the normal away from the hull (try both orientations).
-        if (planeSeparates(normal, normal.dot(a), hull, occluder, tolerance)) return true;
-        if (planeSeparates(-normal, -normal.dot(a), hull, occluder, tolerance)) return true;
-      }
-    }
+  // The occluder wholly on or beyond one of the shaft's supporting planes.
+  for (int k = 0; k < shaft.planes; ++k) {
+    const Vec& normal = shaft.normals[std::size_t(k)];
+    const double offset = shaft.offsets[std::size_t(k)];
+    bool beyond = true;
+    for (const Vec& point : occluder) beyond = beyond && !(normal.dot(point) < offset + tolerance);
+    if (beyond) return true;
   }
   return false;
 }
@@ -114,9 +136,10 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
                                               const Patch& source, int sourcePatch,
                                               const std::vector<int>* parentCandidates) const {
   Classification result;
+  const Shaft shaft(receiver, source);
   auto consider = [&](int patch) {
     if (patch == receiverPatch || patch == sourcePatch) return;
-    if (!separated(receiver, source, patch)) result.candidates.push_back(patch);
+    if (!separated(shaft, patch)) result.candidates.push_back(patch);
   };
   if (parentCandidates) {
     for (int patch : *parentCandidates) consider(patch);

@@ -50,7 +50,8 @@ class VisibilityClassifier {
                           int sourcePatch, const std::vector<int>* parentCandidates) const;
 
  private:
-  bool separated(const Patch& receiver, const Patch& source, int patch) const;
+  struct Shaft;
+  bool separated(const Shaft& shaft, int patch) const;
 
   const Scene& scene_;
   const OccluderScene& occluders_;
