@@ -3,6 +3,7 @@
 #include <sys/mman.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -20,15 +21,26 @@ void CouplingStore::FreeBlock::operator()(double* block) const {
   std::free(block);
 }
 
-CouplingStore::CouplingStore(int functions)
-    : functions_(functions),
-      slotSize_(std::size_t(functions) * std::size_t(functions)),
-      slotsPerBlock_(std::max<std::size_t>(1, kBlockBytes / (slotSize_ * sizeof(double)))) {}
+CouplingStore::CouplingStore(int functions) : functions_(functions) {
+  widths_.resize(std::size_t(functions));
+  for (int columns = 1; columns <= functions; ++columns) {
+    Width& width = widths_[std::size_t(columns - 1)];
+    width.slotSize = std::size_t(functions) * std::size_t(columns);
+    width.slotsPerBlock = std::max<std::size_t>(1, kBlockBytes / (width.slotSize * sizeof(double)));
+  }
+}
 
-void CouplingStore::resize(std::size_t links) {
-  const std::size_t blockBytes = slotsPerBlock_ * slotSize_ * sizeof(double);
-  const std::size_t allocation = (blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes;
-  while (blocks_.size() * slotsPerBlock_ < links) {
+int CouplingStore::allocate(int columns) {
+  assert(columns >= 1 && columns <= functions_);
+  Width& width = widths_[std::size_t(columns - 1)];
+  if (!width.released.empty()) {
+    const int slot = width.released.back();
+    width.released.pop_back();
+    return slot;
+  }
+  if (width.size == width.blocks.size() * width.slotsPerBlock) {
+    const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(double);
+    const std::size_t allocation = (blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes;
     void* memory = std::aligned_alloc(kBlockBytes, allocation);
     if (memory == nullptr) throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
@@ -37,9 +49,24 @@ void CouplingStore::resize(std::size_t links) {
     // Touch the block now, so that its page faults are paid here rather than by whichever
     // link is integrated first into it.
     std::memset(memory, 0, allocation);
-    blocks_.emplace_back(static_cast<double*>(memory));
+    width.blocks.emplace_back(static_cast<double*>(memory));
   }
-  size_ = std::max(size_, links);
+  return int(width.size++);
+}
+
+void CouplingStore::release(int columns, int slot) {
+  assert(columns >= 1 && columns <= functions_);
+  assert(slot >= 0 && std::size_t(slot) < widths_[std::size_t(columns - 1)].size);
+  widths_[std::size_t(columns - 1)].released.push_back(slot);
+}
+
+std::size_t CouplingStore::bytes() const {
+  std::size_t total = 0;
+  for (const Width& width : widths_) {
+    const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(double);
+    total += width.blocks.size() * ((blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes);
+  }
+  return total;
 }
 
 }  // namespace radquad

@@ -1,12 +1,13 @@
-// The coupling matrices of the solver's links, F x F doubles each (column-major, F the
-// number of basis functions), kept in large blocks instead of one heap allocation per link.
-// A cubic-basis solve holds about 10^5 links of 2 KiB each: separate allocations cost more
-// than a small adaptive rule's kernel evaluations (allocator work and a first-touch page fault
-// every other link), and scatter the matrices the gathers stream through in every iteration.
-// Blocks never move, so a slot's address is stable while the store grows.
+// The coupling matrices of the solver's links, kept in large blocks instead of one heap
+// allocation per link. A link keeps F x c doubles (column-major, F the number of basis
+// functions, c <= F the columns it gathers through: radiosity/source_projection.h), so slots
+// come in F widths, each width with its own blocks and its own list of released slots.
+// A cubic-basis solve holds about 5 x 10^5 links: separate allocations cost more than a small
+// adaptive rule's kernel evaluations (allocator work and first-touch page faults), and
+// scatter the matrices the gathers read in every iteration. Blocks never move, so a slot's
+// address is stable while the store grows.
 #pragma once
 
-#include <Eigen/Core>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -17,29 +18,41 @@ class CouplingStore {
  public:
   explicit CouplingStore(int functions);
 
-  // Makes slots 0 .. links - 1 available (new slots are zero).
-  void resize(std::size_t links);
-  std::size_t size() const { return size_; }
+  int functions() const { return functions_; }
 
-  Eigen::Map<Eigen::MatrixXd> operator[](std::size_t link) {
-    return Eigen::Map<Eigen::MatrixXd>(slot(link), functions_, functions_);
-  }
-  const double* data(std::size_t link) const { return slot(link); }
+  // A slot of F x columns doubles (1 <= columns <= F): a released one of that width if any
+  // (holding its old values), else a new one (zero). Returns its index within the width.
+  int allocate(int columns);
+  // Makes the slot available to the next allocate of the same width.
+  void release(int columns, int slot);
+
+  double* data(int columns, int slot) { return address(columns, slot); }
+  const double* data(int columns, int slot) const { return address(columns, slot); }
+
+  // Slots ever created of a width (in use or released), and the bytes of all blocks held.
+  std::size_t slots(int columns) const { return widths_[std::size_t(columns - 1)].size; }
+  std::size_t bytes() const;
 
  private:
   struct FreeBlock {
     void operator()(double* block) const;
   };
-  // The blocks are owned by the store; a const store hands out read-only pointers (data).
-  double* slot(std::size_t link) const {
-    return blocks_[link / slotsPerBlock_].get() + (link % slotsPerBlock_) * slotSize_;
+  struct Width {
+    std::size_t slotSize = 0;       // F * columns
+    std::size_t slotsPerBlock = 0;  // slots in one block
+    std::size_t size = 0;           // slots created
+    std::vector<std::unique_ptr<double[], FreeBlock>> blocks;
+    std::vector<int> released;
+  };
+  // The blocks are owned by the store; a const store hands out read-only pointers.
+  double* address(int columns, int slot) const {
+    const Width& width = widths_[std::size_t(columns - 1)];
+    return width.blocks[std::size_t(slot) / width.slotsPerBlock].get() +
+           (std::size_t(slot) % width.slotsPerBlock) * width.slotSize;
   }
 
   int functions_;
-  std::size_t slotSize_;       // F * F
-  std::size_t slotsPerBlock_;  // slots in one block of kBlockBytes
-  std::size_t size_ = 0;
-  std::vector<std::unique_ptr<double[], FreeBlock>> blocks_;
+  std::vector<Width> widths_;  // widths_[c - 1]: slots of c columns
 };
 
 }  // namespace radquad

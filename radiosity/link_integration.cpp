@@ -59,7 +59,7 @@ LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::arr
                                                 const GaussTables& tables, int depth,
                                                 Eigen::Map<Eigen::MatrixXd> coupling) {
   LinkIntegrationCounts counts;
-  if (depth <= 0 || !elementsNear(link.receiver, link.source)) {
+  if (!composite(link.receiver, link.source, depth)) {
     const GaussSide& receiverSide = tables.side(rule[0], rule[1]);
     const GaussSide& sourceSide = tables.side(rule[2], rule[3]);
     accumulator_.product(link, receiverSide.samples, receiverSide.basis, sourceSide.samples,

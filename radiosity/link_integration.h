@@ -51,6 +51,11 @@ class LinkIntegrator {
                                   const GaussTables& tables, int depth,
                                   Eigen::Map<Eigen::MatrixXd> coupling);
 
+  // Whether integrate uses the pieces' composite rule for these elements at this depth.
+  static bool composite(const Patch& receiver, const Patch& source, int depth) {
+    return depth > 0 && elementsNear(receiver, source);
+  }
+
  private:
   // A square [u0, u0 + size] x [v0, v0 + size] of an element's parameter square.
   struct Square {

@@ -4,7 +4,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <utility>
@@ -33,8 +35,9 @@ struct Solver::Impl {
   GaussTables tables;
   VisibilityClassifier classifier;
   tbb::enumerable_thread_specific<LinkIntegrator> integrators;
-  CouplingStore couplings;  // K of link k in slot k (rows receiver, columns source functions)
+  CouplingStore couplings;  // each link's kept columns of K (rows receiver functions)
   SourceProjection projection;
+  tbb::enumerable_thread_specific<Eigen::MatrixXd> scratch;  // a link's whole K
 };
 
 Solver::Solver(const Scene& scene, SolverOptions options)
@@ -135,7 +138,9 @@ bool Solver::refinementPass() {
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
       parent.computed = false;
-      if (parent.slot >= 0) freeSlots_.push_back(std::exchange(parent.slot, -1));
+      if (parent.slot >= 0) {
+        impl_->couplings.release(parent.slotColumns, std::exchange(parent.slot, -1));
+      }
       const int receiver = parent.receiver, source = parent.source;
       const LinkClass visibility = parent.visibility;
       const std::vector<int> candidates = std::move(parent.candidates);
@@ -264,16 +269,27 @@ void Solver::computeCouplings() {
     again.push_back(link.computed);
   }
   const auto chosen = std::chrono::steady_clock::now();
-  // Storage for the new links' matrices (untimed: the same for every rule choice).
-  for (int index : todo) {
-    SolverLink& link = links_[std::size_t(index)];
-    if (link.slot >= 0) continue;
-    if (freeSlots_.empty()) {
-      link.slot = int(impl_->couplings.size());
-      impl_->couplings.resize(impl_->couplings.size() + 1);
-    } else {
-      link.slot = freeSlots_.back();
-      freeSlots_.pop_back();
+  // Storage for the links' kept columns (untimed: allocation, not integration): a product
+  // rule keeps min(Su, n) x min(Sv, n) columns, a composite rule all n^2
+  // (source_projection.h). A link whose width changes moves to a slot of the new width.
+  const int n = options_.degree + 1;
+  std::vector<std::array<int, 2>> kept(todo.size());
+  std::vector<char> composites(todo.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    SolverLink& link = links_[std::size_t(todo[k])];
+    const bool composite =
+        LinkIntegrator::composite((*hierarchy_)[link.receiver].geometry,
+                                  (*hierarchy_)[link.source].geometry, options_.singularDepth);
+    composites[k] = composite;
+    kept[k] = composite ? std::array<int, 2>{n, n}
+                        : std::array<int, 2>{std::min(rules[k][2], n), std::min(rules[k][3], n)};
+    const int columns = kept[k][0] * kept[k][1];
+    if (link.slot >= 0 && link.slotColumns != columns) {
+      impl_->couplings.release(link.slotColumns, std::exchange(link.slot, -1));
+    }
+    if (link.slot < 0) {
+      link.slot = impl_->couplings.allocate(columns);
+      link.slotColumns = columns;
     }
   }
   const auto stored = std::chrono::steady_clock::now();
@@ -284,17 +300,20 @@ void Solver::computeCouplings() {
     const Link kernelLink{(*hierarchy_)[link.receiver].geometry,
                           (*hierarchy_)[link.source].geometry,
                           link.visibility == LinkClass::kPartial ? &impl_->occluders : nullptr};
+    const int functions = n * n;
+    Eigen::MatrixXd& whole = impl_->scratch.local();
+    whole.resize(functions, functions);
     const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
         kernelLink, rule, impl_->tables, options_.singularDepth,
-        impl_->couplings[std::size_t(link.slot)]);
+        Eigen::Map<Eigen::MatrixXd>(whole.data(), functions, functions));
+    assert(counts.composite == bool(composites[k]));
     // A product rule's coupling keeps the columns of its source points' orders only.
-    const int n = options_.degree + 1;
-    link.gatherPoints = {n, n};
-    if (!counts.composite) link.gatherPoints = {std::min(rule[2], n), std::min(rule[3], n)};
+    link.gatherPoints = kept[k];
     if (link.gatherPoints != std::array<int, 2>{n, n}) {
-      impl_->projection.compact(link.gatherPoints[0], link.gatherPoints[1],
-                                impl_->couplings[std::size_t(link.slot)].data());
+      impl_->projection.compact(link.gatherPoints[0], link.gatherPoints[1], whole.data());
     }
+    std::memcpy(impl_->couplings.data(link.slotColumns, link.slot), whole.data(),
+                sizeof(double) * std::size_t(functions) * std::size_t(link.slotColumns));
     link.kernelEvaluations = counts.kernelEvaluations;
     link.rule = rule;
     link.computed = true;
@@ -347,15 +366,16 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
     if (k + 4 < indices.size()) {
       const SolverLink& ahead = links[std::size_t(indices[k + 4])];
       if (ahead.slot >= 0) {
-        const char* start = reinterpret_cast<const char*>(couplings.data(std::size_t(ahead.slot)));
-        const std::size_t bytes = std::size_t(functions) * std::size_t(ahead.gatherPoints[0]) *
-                                  std::size_t(ahead.gatherPoints[1]) * sizeof(double);
+        const char* start =
+            reinterpret_cast<const char*>(couplings.data(ahead.slotColumns, ahead.slot));
+        const std::size_t bytes =
+            std::size_t(functions) * std::size_t(ahead.slotColumns) * sizeof(double);
         for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
       }
     }
     const SolverLink& link = links[std::size_t(indices[k])];
     if (!link.computed) continue;  // its source had no radiosity yet
-    const double* coupling = couplings.data(std::size_t(link.slot));
+    const double* coupling = couplings.data(link.slotColumns, link.slot);
     const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
     if (pu == orders && pv == orders) {
       sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)
@@ -501,8 +521,8 @@ void Solver::solve() {
   statistics_.elapsedSeconds = elapsed();
   // The solution is in the hierarchy; the couplings (about 1 GiB for a cubic cornell solve)
   // are released so that a solver kept for its solution does not hold them.
+  statistics_.couplingStoreBytes = impl_->couplings.bytes();
   impl_->couplings = CouplingStore(hierarchy_->functions());
-  freeSlots_.clear();
   for (SolverLink& link : links_) link.slot = -1;
 }
 

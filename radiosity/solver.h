@@ -82,6 +82,7 @@ struct SolverLink {
   bool active = true;
   bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
   int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
+  int slotColumns = 0;    // the width of that slot (the kept columns, gatherPoints' product)
   std::array<int, 4> rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
   std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
   // The source points {pu, pv} whose columns the stored coupling keeps (source_projection.h):
@@ -109,6 +110,8 @@ struct SolveStatistics {
   // changes; the rest is refinement, visibility classification, the storage of the coupling
   // matrices, gathers and push/pull).
   double couplingSeconds = 0.0;
+  // The coupling store's memory when the solve ended (it is then released).
+  std::size_t couplingStoreBytes = 0;
 };
 
 class Solver {
@@ -152,7 +155,6 @@ class Solver {
   std::unique_ptr<Hierarchy> hierarchy_;
   std::vector<SolverLink> links_;
   std::vector<std::array<int, 2>> sourcePoints_;  // per element, see updateSourcePoints
-  std::vector<int> freeSlots_;  // coupling store slots of links since refined, for reuse
   // gather(): the sources' projections Bhat, at projectionOffset_[element * (d+1)^2 + shape]
   // (shape (pu - 1) * (d+1) + pv - 1; -1 where no link gathers through it).
   std::vector<std::ptrdiff_t> projectionOffset_;

@@ -59,6 +59,7 @@ nlohmann::json runJson(const Solver& solver) {
   return {{"kernel_evaluations", s.kernelEvaluations},
           {"elapsed_seconds", s.elapsedSeconds},
           {"coupling_seconds", s.couplingSeconds},
+          {"coupling_store_bytes", s.couplingStoreBytes},
           {"coupling_computations", s.couplingComputations},
           {"recomputations", s.recomputations},
           {"recomputation_kernel_evaluations", s.recomputationEvaluations},

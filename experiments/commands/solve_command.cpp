@@ -139,6 +139,7 @@ void runSolve(const SolveCommandOptions& command) {
       {"final_change", statistics.finalChange},
       {"elapsed_seconds", statistics.elapsedSeconds},
       {"coupling_seconds", statistics.couplingSeconds},
+      {"coupling_store_bytes", statistics.couplingStoreBytes},
       {"kernel_evaluations_per_second",
        statistics.elapsedSeconds > 0.0
            ? double(statistics.kernelEvaluations) / statistics.elapsedSeconds

@@ -1,35 +1,77 @@
-// The solver's coupling store: slots keep their values and addresses while it grows.
+// The solver's coupling store: slots keep their values and addresses while it grows, widths
+// are independent, released slots are reused by their own width only, and the memory held
+// follows the widths in use.
 #include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
 
 #include "radiosity/coupling_store.h"
 
 namespace radquad {
 namespace {
 
+constexpr std::size_t kBlockBytes = std::size_t(2) << 20;  // radiosity/coupling_store.cpp
+
 TEST(CouplingStore, SlotsKeepTheirValuesAndAddressesAsTheStoreGrows) {
   for (int functions : {1, 9, 16}) {
-    CouplingStore store(functions);
-    store.resize(3);
-    EXPECT_EQ(store.size(), 3u);
-    EXPECT_TRUE(store[2].isZero(0.0));
-    store[1].setConstant(1.5);
-    const double* first = store.data(1);
-    // Past three blocks of 2 MiB (radiosity/coupling_store.cpp), so that blocks are added.
-    const std::size_t slotBytes = sizeof(double) * std::size_t(functions * functions);
-    const std::size_t links = 3 * ((std::size_t(2) << 20) / slotBytes) + 5;
-    store.resize(links);
-    EXPECT_EQ(store.size(), links);
-    for (std::size_t k = 0; k < links; k += 97) store[k](0, functions - 1) = double(k);
-    EXPECT_EQ(store.data(1), first);
-    EXPECT_EQ(store[1](functions - 1, 0), 1.5);
-    for (std::size_t k = 97; k < links; k += 97) {
-      EXPECT_EQ(store[k](0, functions - 1), double(k)) << k;
-      EXPECT_EQ(store[k].rows(), functions);
-      EXPECT_EQ(store[k].cols(), functions);
+    for (int columns : {1, functions}) {
+      CouplingStore store(functions);
+      const std::size_t values = std::size_t(functions * columns);
+      std::vector<int> slots;
+      for (int k = 0; k < 3; ++k) slots.push_back(store.allocate(columns));
+      EXPECT_EQ(store.slots(columns), 3u);
+      for (std::size_t v = 0; v < values; ++v) EXPECT_EQ(store.data(columns, slots[2])[v], 0.0);
+      for (std::size_t v = 0; v < values; ++v) store.data(columns, slots[1])[v] = 1.5;
+      const double* first = store.data(columns, slots[1]);
+      // Past three blocks, so that blocks are added.
+      const std::size_t count = 3 * (kBlockBytes / (sizeof(double) * values)) + 5;
+      while (slots.size() < count) slots.push_back(store.allocate(columns));
+      EXPECT_EQ(store.slots(columns), count);
+      for (std::size_t k = 0; k < count; k += 97) {
+        store.data(columns, slots[k])[values - 1] = double(k);
+      }
+      EXPECT_EQ(store.data(columns, slots[1]), first);
+      EXPECT_EQ(store.data(columns, slots[1])[0], 1.5);
+      for (std::size_t k = 97; k < count; k += 97) {
+        EXPECT_EQ(store.data(columns, slots[k])[values - 1], double(k)) << k;
+      }
+      // Distinct slots do not overlap: neighbours are exactly one slot apart or in other
+      // blocks.
+      for (std::size_t k = 1; k < count; ++k) {
+        const double* a = store.data(columns, slots[k - 1]);
+        const double* b = store.data(columns, slots[k]);
+        EXPECT_TRUE(b >= a + values || a >= b + values) << k;
+      }
     }
-    store.resize(10);  // never shrinks
-    EXPECT_EQ(store.size(), links);
   }
+}
+
+TEST(CouplingStore, ReleasedSlotsAreReusedByTheirOwnWidthOnly) {
+  CouplingStore store(16);
+  const int narrow = store.allocate(2), wide = store.allocate(16);
+  const int other = store.allocate(2);
+  EXPECT_NE(narrow, other);
+  store.release(2, narrow);
+  EXPECT_EQ(store.allocate(16), wide + 1);  // another width: a new slot
+  EXPECT_EQ(store.allocate(2), narrow);      // its own width: the released one
+  EXPECT_EQ(store.allocate(2), other + 1);   // then new ones again
+  EXPECT_EQ(store.slots(2), 3u);
+  EXPECT_EQ(store.slots(16), 2u);
+  EXPECT_EQ(store.slots(1), 0u);
+}
+
+TEST(CouplingStore, MemoryFollowsTheWidthsInUse) {
+  // 10,000 one-column slots of a cubic basis take 16 x 8 bytes each: one 2 MiB block; as
+  // many full ones (2 KiB each) take 10 blocks.
+  CouplingStore narrow(16), full(16);
+  EXPECT_EQ(narrow.bytes(), 0u);
+  for (int k = 0; k < 10000; ++k) {
+    narrow.allocate(1);
+    full.allocate(16);
+  }
+  EXPECT_EQ(narrow.bytes(), kBlockBytes);
+  EXPECT_EQ(full.bytes(), 10 * kBlockBytes);
 }
 
 }  // namespace
