@@ -69,7 +69,6 @@ LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::arr
     counts.raysCast = piece_.raysCast;
     return counts;
   }
-  counts.composite = true;
   pieces_.clear();
   collectPieces(link.receiver, Square{}, link.source, Square{}, depth);
   // The pieces that share a receiver square form one product rule: that square's points

@@ -36,9 +36,6 @@ bool elementsNear(const Patch& a, const Patch& b);
 struct LinkIntegrationCounts {
   std::uint64_t kernelEvaluations = 0;
   std::uint64_t raysCast = 0;
-  // Whether the pieces' composite rule was used (near or touching elements); otherwise the
-  // rule was one product on the whole elements.
-  bool composite = false;
 };
 
 // Integrates links with Gauss product rules; one per thread (it keeps scratch space, so a

@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -139,7 +138,7 @@ bool Solver::refinementPass() {
       parent.active = false;
       parent.computed = false;
       if (parent.slot >= 0) {
-        impl_->couplings.release(parent.slotColumns, std::exchange(parent.slot, -1));
+        impl_->couplings.release(keptColumns(parent), std::exchange(parent.slot, -1));
       }
       const int receiver = parent.receiver, source = parent.source;
       const LinkClass visibility = parent.visibility;
@@ -273,24 +272,19 @@ void Solver::computeCouplings() {
   // rule keeps min(Su, n) x min(Sv, n) columns, a composite rule all n^2
   // (source_projection.h). A link whose width changes moves to a slot of the new width.
   const int n = options_.degree + 1;
-  std::vector<std::array<int, 2>> kept(todo.size());
-  std::vector<char> composites(todo.size());
   for (std::size_t k = 0; k < todo.size(); ++k) {
     SolverLink& link = links_[std::size_t(todo[k])];
     const bool composite =
         LinkIntegrator::composite((*hierarchy_)[link.receiver].geometry,
                                   (*hierarchy_)[link.source].geometry, options_.singularDepth);
-    composites[k] = composite;
-    kept[k] = composite ? std::array<int, 2>{n, n}
-                        : std::array<int, 2>{std::min(rules[k][2], n), std::min(rules[k][3], n)};
-    const int columns = kept[k][0] * kept[k][1];
-    if (link.slot >= 0 && link.slotColumns != columns) {
-      impl_->couplings.release(link.slotColumns, std::exchange(link.slot, -1));
+    const std::array<int, 2> kept =
+        composite ? std::array<int, 2>{n, n}
+                  : std::array<int, 2>{std::min(rules[k][2], n), std::min(rules[k][3], n)};
+    if (link.slot >= 0 && kept != link.gatherPoints) {
+      impl_->couplings.release(keptColumns(link), std::exchange(link.slot, -1));
     }
-    if (link.slot < 0) {
-      link.slot = impl_->couplings.allocate(columns);
-      link.slotColumns = columns;
-    }
+    link.gatherPoints = kept;
+    if (link.slot < 0) link.slot = impl_->couplings.allocate(keptColumns(link));
   }
   const auto stored = std::chrono::steady_clock::now();
   std::vector<std::uint64_t> rays(todo.size(), 0);
@@ -306,14 +300,12 @@ void Solver::computeCouplings() {
     const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
         kernelLink, rule, impl_->tables, options_.singularDepth,
         Eigen::Map<Eigen::MatrixXd>(whole.data(), functions, functions));
-    assert(counts.composite == bool(composites[k]));
     // A product rule's coupling keeps the columns of its source points' orders only.
-    link.gatherPoints = kept[k];
     if (link.gatherPoints != std::array<int, 2>{n, n}) {
       impl_->projection.compact(link.gatherPoints[0], link.gatherPoints[1], whole.data());
     }
-    std::memcpy(impl_->couplings.data(link.slotColumns, link.slot), whole.data(),
-                sizeof(double) * std::size_t(functions) * std::size_t(link.slotColumns));
+    std::memcpy(impl_->couplings.data(keptColumns(link), link.slot), whole.data(),
+                sizeof(double) * std::size_t(functions) * std::size_t(keptColumns(link)));
     link.kernelEvaluations = counts.kernelEvaluations;
     link.rule = rule;
     link.computed = true;
@@ -367,15 +359,15 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
       const SolverLink& ahead = links[std::size_t(indices[k + 4])];
       if (ahead.slot >= 0) {
         const char* start =
-            reinterpret_cast<const char*>(couplings.data(ahead.slotColumns, ahead.slot));
+            reinterpret_cast<const char*>(couplings.data(keptColumns(ahead), ahead.slot));
         const std::size_t bytes =
-            std::size_t(functions) * std::size_t(ahead.slotColumns) * sizeof(double);
+            std::size_t(functions) * std::size_t(keptColumns(ahead)) * sizeof(double);
         for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
       }
     }
     const SolverLink& link = links[std::size_t(indices[k])];
     if (!link.computed) continue;  // its source had no radiosity yet
-    const double* coupling = couplings.data(link.slotColumns, link.slot);
+    const double* coupling = couplings.data(keptColumns(link), link.slot);
     const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
     if (pu == orders && pv == orders) {
       sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)

@@ -82,16 +82,19 @@ struct SolverLink {
   bool active = true;
   bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
   int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
-  int slotColumns = 0;    // the width of that slot (the kept columns, gatherPoints' product)
   std::array<int, 4> rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
   std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
   // The source points {pu, pv} whose columns the stored coupling keeps (source_projection.h):
   // min(Su, d+1), min(Sv, d+1) for a product rule, {d+1, d+1} (every column) for a
-  // composite one.
+  // composite one. Its slot in the store is keptColumns() = pu pv columns wide.
   std::array<int, 2> gatherPoints = {0, 0};
   std::uint64_t kernelEvaluations = 0;       // of the last computation
   std::vector<int> candidates;               // candidate occluders (patch indices)
 };
+
+inline int keptColumns(const SolverLink& link) {
+  return link.gatherPoints[0] * link.gatherPoints[1];
+}
 
 struct SolveStatistics {
   std::uint64_t kernelEvaluations = 0;         // over the whole solve, all computations
