@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "kernel/input_error.h"
+#include "kernel/patch_intersection.h"
 
 namespace radquad {
 
@@ -73,6 +74,10 @@ LinkDescription parseLink(const nlohmann::json& value, const std::string& where)
   LinkDescription link{parsePatch(value["receiver"], where + ": receiver"),
                        parsePatch(value["source"], where + ": source"),
                        {}};
+  if (const auto crossing = patchesInterpenetrate(link.receiver, link.source)) {
+    throw InputError(where + ": receiver and source " + *crossing +
+                     " (the kernel is not integrable there; touching along an edge is allowed)");
+  }
   if (value.contains("occluders")) {
     const auto& occluders = value["occluders"];
     if (!occluders.is_array()) throw InputError(where + ": occluders: expected an array");

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   } catch (const radquad::InputError& error) {
     std::cerr << "radquad: error: " << error.what() << "\n";
     return radquad::kInputErrorExitStatus;
+  } catch (const radquad::ComputationError& error) {
+    std::cerr << "radquad: computation failed: " << error.what() << "\n";
+    return radquad::kComputationErrorExitStatus;
   } catch (const std::exception& error) {
     std::cerr << "radquad: internal error: " << error.what() << "\n";
     return 1;

@@ -151,7 +151,7 @@ inline Lanes8 kernelTimesPi8(Lanes8 dx, Lanes8 dy, Lanes8 dz, Lanes8 receiverCos
   const Lanes8 r2 = dx * dx + dy * dy + dz * dz;
   const Lanes8 c =
       (receiverCos < zero ? zero : receiverCos) * (sourceCos < zero ? zero : sourceCos);
-  return c / (r2 * r2);
+  return c > zero ? c / (r2 * r2) : zero;
 }
 
 // One receiver point's row: row[j] = pi G(x, x'_j) without visibility, eight source points at a
@@ -250,7 +250,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
                             rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data()};
     evaluateKernel(receiverPoints, nr, sourcePoints, ns, kernel_.data(), &staged);
     std::size_t positive = 0;
-    for (std::size_t k = 0; k < pairs; ++k) positive += kernel_[k] > 0.0 ? 1 : 0;
+    for (std::size_t k = 0; k < pairs; ++k) positive += detail::needsRay(kernel_[k]) ? 1 : 0;
     if (positive == pairs) {
       // Every pair faces the other (the usual case): one ray per pair in pair order, staged
       // with the kernel and applied without branches.
@@ -261,7 +261,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
       std::size_t rays = 0;
       for (std::size_t i = 0; i < nr; ++i) {
         for (std::size_t j = 0; j < ns; ++j) {
-          if (kernel_[i * ns + j] <= 0.0) continue;
+          if (!detail::needsRay(kernel_[i * ns + j])) continue;
           segments_.set(rays, receiverX_[i], receiverY_[i], receiverZ_[i],
                         sourceX_[j] - receiverX_[i], sourceY_[j] - receiverY_[i],
                         sourceZ_[j] - receiverZ_[i]);

@@ -65,10 +65,19 @@ inline void placePoints(const Patch& patch, const double* __restrict u, const do
 
 // cos(theta) cos(theta') |d|^2 / |d|^4 with d = y - x:
 // n_r.d = n_r.y - n_r.x and -n_s.d = n_s.x - n_s.y.
+// A pair whose clamped cosines vanish contributes 0, whatever its distance: in particular two
+// coincident points (d = 0, where the expression is 0/0) are a set of measure zero, not NaN.
 inline double kernelTimesPi(double dx, double dy, double dz, double receiverCos, double sourceCos) {
   const double r2 = dx * dx + dy * dy + dz * dz;
   const double c = std::max(receiverCos, 0.0) * std::max(sourceCos, 0.0);
-  return c / (r2 * r2);
+  return c > 0.0 ? c / (r2 * r2) : 0.0;
+}
+
+// The one predicate that decides whether a pair needs a visibility ray: its unoccluded kernel
+// is positive. Every path counts and fills its ray buffers with it (a NaN kernel, which
+// kernelTimesPi no longer produces from finite points, would need no ray either way).
+inline bool needsRay(double kernelValue) {
+  return kernelValue > 0.0;
 }
 
 }  // namespace radquad::detail

@@ -1,6 +1,6 @@
-// Errors in what a user gave radquad (a file, an option, a rule name).
-// Every command catches InputError at the top, prints its message on stderr and exits
-// with status 2; internal invariants use assertions instead.
+// Errors in what a user gave radquad (a file, an option, a rule name), and computations that
+// failed. Every command catches InputError at the top, prints its message on stderr and exits
+// with status 2 (ComputationError: status 3); internal invariants use assertions instead.
 #pragma once
 
 #include <stdexcept>
@@ -15,5 +15,15 @@ class InputError : public std::runtime_error {
 
 // Exit status of a command that rejected its input.
 inline constexpr int kInputErrorExitStatus = 2;
+
+// A computation that failed on valid input: a non-finite result, or an iteration that did
+// not converge. Commands print the message on stderr and exit with status 3; no result file
+// is written.
+class ComputationError : public std::runtime_error {
+ public:
+  explicit ComputationError(const std::string& message) : std::runtime_error(message) {}
+};
+
+inline constexpr int kComputationErrorExitStatus = 3;
 
 }  // namespace radquad

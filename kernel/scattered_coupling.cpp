@@ -35,7 +35,7 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
   result.raysBlocked = 0;
   std::size_t positive = 0;
   if (link.hasOccluders()) {
-    for (std::size_t k = 0; k < count; ++k) positive += kernel_[k] > 0.0 ? 1 : 0;
+    for (std::size_t k = 0; k < count; ++k) positive += detail::needsRay(kernel_[k]) ? 1 : 0;
   }
   if (link.hasOccluders() && positive == count) {
     // Every pair faces the other: one ray per point, staged and applied without branches.
@@ -54,7 +54,7 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
     rayPairs_.resize(count);
     std::size_t rays = 0;
     for (std::size_t k = 0; k < count; ++k) {
-      if (kernel_[k] <= 0.0) continue;
+      if (!detail::needsRay(kernel_[k])) continue;
       segments_.set(rays, receiverX_[k], receiverY_[k], receiverZ_[k], sourceX_[k] - receiverX_[k],
                     sourceY_[k] - receiverY_[k], sourceZ_[k] - receiverZ_[k]);
       rayPairs_[rays++] = std::uint32_t(k);

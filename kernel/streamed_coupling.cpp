@@ -54,7 +54,7 @@ std::size_t placeAndEvaluate(const PatchFrame receiverFrame, const PatchFrame so
       const double kernel = kernelTimesPi(sx - rx, sy - ry, sz - rz, sourceOther - receiverOwn,
                                           receiverOther - sourceOwn);
       g[k] = kernel;
-      positive += kernel > 0.0 ? 1 : 0;
+      positive += detail::needsRay(kernel) ? 1 : 0;
       if constexpr (kStage) {
         packet->org_x[lane] = float(rx);
         packet->org_y[lane] = float(ry);
@@ -163,7 +163,7 @@ void CouplingAccumulator::streamed(const Link& link, const PointStream& points, 
         // Keep only the rays of positive kernels, in order (as scattered() casts them).
         rays = 0;
         for (std::size_t k = 0; k < rows; ++k) {
-          if (!(g[k] > 0.0)) continue;
+          if (!detail::needsRay(g[k])) continue;
           moveSegment(segments_.packets(), k, rays);
           rayPairs_[rays++] = std::uint32_t(k);
         }

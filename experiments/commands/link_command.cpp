@@ -67,6 +67,10 @@ void runLink(const LinkOptions& options) {
     throw InputError("--trials " + std::to_string(options.trials) + ": expected at least 1");
   }
   const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
+  if (!integral.coupling.allFinite() || !std::isfinite(integral.formFactor)) {
+    throw ComputationError(options.linkPath + ": rule " + prepared.rule().name() +
+                           " gave a non-finite coupling");
+  }
   const auto declared = prepared.rule().degree();
   nlohmann::json out = {
       {"rule", prepared.rule().name()},

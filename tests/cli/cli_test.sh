@@ -40,6 +40,8 @@ expect_error non_finite "non_finite.json: non-finite number" link "$fixtures/non
 expect_error zero_area "source: degenerate patch" link "$fixtures/zero_area.json" --rule FullGauss
 expect_error missing_key "missing key 'source'" link "$fixtures/missing_source.json" --rule FullGauss
 expect_error bad_occluder "occluders[1]: degenerate patch" link "$fixtures/bad_occluders.json" --rule FullGauss
+expect_error crossing_patches "crossing_patches.json: receiver and source cross each other" link "$fixtures/crossing_patches.json" --rule FullGauss --degree 1
+expect_error coincident_patches "coincident_patches.json: receiver and source overlap" link "$fixtures/coincident_patches.json" --rule FullGauss
 expect_error missing_file "no_such_file.json: cannot open" link "$fixtures/no_such_file.json" --rule FullGauss
 expect_error unknown_rule "unknown rule 'NoSuchRule'; valid rules: FullGauss" link "$fixtures/good_link.json" --rule NoSuchRule
 expect_error bad_gauss_form "expected Gauss:RsxRtxSuxSv" link "$fixtures/good_link.json" --rule Gauss:3x3

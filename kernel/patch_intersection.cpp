@@ -1,0 +1,122 @@
+#include "kernel/patch_intersection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace radquad {
+namespace {
+
+using Corners = std::array<Eigen::Vector3d, 4>;
+
+Corners cornersOf(const Patch& p) {
+  return {p.origin, p.origin + p.edgeU, p.origin + p.edgeU + p.edgeV, p.origin + p.edgeV};
+}
+
+// The part of the line {point + t direction} inside the convex polygon `corners` (in its
+// plane, which the line is assumed to lie in), as a parameter interval [t0, t1]; empty when
+// t0 > t1. Each edge's inward half-plane cuts the interval.
+void clipLineToPolygon(const Corners& corners, const Eigen::Vector3d& normal,
+                       const Eigen::Vector3d& point, const Eigen::Vector3d& direction, double& t0,
+                       double& t1) {
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d& p = corners[k];
+    const Eigen::Vector3d edge = corners[(k + 1) % 4] - p;
+    const Eigen::Vector3d inward = normal.cross(edge);  // counter-clockwise about the normal
+    const double base = inward.dot(point - p);
+    const double slope = inward.dot(direction);
+    if (slope == 0.0) {
+      if (base < 0.0) t0 = 1.0, t1 = 0.0;
+      continue;
+    }
+    const double t = -base / slope;
+    if (slope > 0.0) t0 = std::max(t0, t);
+    else t1 = std::min(t1, t);
+  }
+}
+
+// Area of the intersection of two convex quadrilaterals in one plane (Sutherland-Hodgman
+// clipping of a by each edge of b, whose corners turn counter-clockwise about its own normal
+// bNormal, then the shoelace formula).
+double coplanarOverlapArea(const Corners& a, const Corners& b, const Eigen::Vector3d& bNormal) {
+  std::vector<Eigen::Vector3d> polygon(a.begin(), a.end());
+  for (int k = 0; k < 4 && !polygon.empty(); ++k) {
+    const Eigen::Vector3d& p = b[k];
+    const Eigen::Vector3d inward = bNormal.cross(b[(k + 1) % 4] - p);
+    std::vector<Eigen::Vector3d> clipped;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const Eigen::Vector3d& from = polygon[i];
+      const Eigen::Vector3d& to = polygon[(i + 1) % polygon.size()];
+      const double df = inward.dot(from - p), dt = inward.dot(to - p);
+      if (df >= 0.0) clipped.push_back(from);
+      if ((df >= 0.0) != (dt >= 0.0)) clipped.push_back(from + (df / (df - dt)) * (to - from));
+    }
+    polygon = std::move(clipped);
+  }
+  Eigen::Vector3d twiceArea = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    twiceArea += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+  }
+  return 0.5 * std::abs(twiceArea.dot(bNormal));
+}
+
+std::string format(double value) {
+  std::ostringstream out;
+  out.precision(6);
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+std::optional<std::string> patchesInterpenetrate(const Patch& a, const Patch& b) {
+  const Corners ca = cornersOf(a), cb = cornersOf(b);
+  const double size = std::max({a.edgeU.norm(), a.edgeV.norm(), b.edgeU.norm(), b.edgeV.norm()});
+  const double tolerance = 1e-9 * size;
+  // Signed distances of each patch's corners to the other's plane.
+  std::array<double, 4> da, db;
+  for (int k = 0; k < 4; ++k) {
+    da[k] = a.normal.dot(cb[k] - a.origin);  // b's corners against a's plane
+    db[k] = b.normal.dot(ca[k] - b.origin);  // a's corners against b's plane
+  }
+  auto straddles = [&](const std::array<double, 4>& d) {
+    const double lo = *std::min_element(d.begin(), d.end());
+    const double hi = *std::max_element(d.begin(), d.end());
+    return lo < -tolerance && hi > tolerance;
+  };
+  auto inPlane = [&](const std::array<double, 4>& d) {
+    for (double x : d) {
+      if (std::abs(x) > tolerance) return false;
+    }
+    return true;
+  };
+  if (inPlane(da) && inPlane(db)) {
+    const double area = coplanarOverlapArea(ca, cb, b.normal);
+    if (area > tolerance * size) {
+      return "overlap in their common plane over an area of " + format(area);
+    }
+    return std::nullopt;
+  }
+  // Not coplanar: the interiors can share a segment only if each patch has corners strictly
+  // on both sides of the other's plane; the shared segment lies on the planes' common line.
+  if (!straddles(da) || !straddles(db)) return std::nullopt;
+  const Eigen::Vector3d direction = a.normal.cross(b.normal);
+  const double sine = direction.norm();
+  if (sine < 1e-12) return std::nullopt;  // parallel planes that both straddle: impossible
+  // A point on both planes: solve n_a.x = n_a.o_a, n_b.x = n_b.o_b on the line's normal plane.
+  const double ha = a.normal.dot(a.origin), hb = b.normal.dot(b.origin);
+  const Eigen::Vector3d point =
+      (ha * b.normal.cross(direction) + hb * direction.cross(a.normal)) / (sine * sine);
+  const Eigen::Vector3d unit = direction / sine;
+  double t0 = -INFINITY, t1 = INFINITY;
+  clipLineToPolygon(ca, a.normal, point, unit, t0, t1);
+  clipLineToPolygon(cb, b.normal, point, unit, t0, t1);
+  if (t1 - t0 > tolerance) {
+    return "cross each other along a segment of length " + format(t1 - t0);
+  }
+  return std::nullopt;
+}
+
+}  // namespace radquad

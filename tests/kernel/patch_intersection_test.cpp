@@ -1,0 +1,93 @@
+// Interpenetrating patches (crossing or overlapping) against legal contact (a shared edge, a
+// shared corner, an edge lying on the other patch), and the kernel paths on points that
+// coincide: no NaN, and ray buffers filled with the same predicate they were sized with.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kernel/coupling.h"
+#include "kernel/legendre_basis.h"
+#include "kernel/patch_intersection.h"
+#include "quadrature/registry.h"
+#include "tests/support/flatten_samples.h"
+
+namespace radquad {
+namespace {
+
+Patch square(const Eigen::Vector3d& o, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return Patch::make(o, a, b, "p");
+}
+
+TEST(PatchIntersection, CrossingPatchesAreReportedWithTheSegmentLength) {
+  const Patch floor = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  // A vertical wall through the middle of the floor, 1 below to 1 above: they share the
+  // segment x = 0.5, y in [0, 1] (length 1).
+  const Patch wall = square({0.5, 0, -1}, {0, 1, 0}, {0, 0, 2});
+  const auto crossing = patchesInterpenetrate(floor, wall);
+  ASSERT_TRUE(crossing.has_value());
+  EXPECT_NE(crossing->find("segment of length 1"), std::string::npos) << *crossing;
+  EXPECT_TRUE(patchesInterpenetrate(wall, floor).has_value());
+  // The input of the reported memory fault: a tilted receiver through a source.
+  const Patch receiver = square({0, 0, 0}, {1, 0, 2}, {0, 1, 0});
+  const Patch source = square({0, 1, 1}, {1, 0, 0}, {0, -1, 0});
+  EXPECT_TRUE(patchesInterpenetrate(receiver, source).has_value());
+}
+
+TEST(PatchIntersection, CoincidentAndOverlappingCoplanarPatches) {
+  const Patch a = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  const auto same = patchesInterpenetrate(a, a);
+  ASSERT_TRUE(same.has_value());
+  EXPECT_NE(same->find("area of 1"), std::string::npos) << *same;
+  // Opposite orientation, shifted by a quarter: overlap 0.75 x 1.
+  const Patch flipped = square({0.25, 0, 0}, {0, 1, 0}, {1, 0, 0});
+  const auto overlap = patchesInterpenetrate(a, flipped);
+  ASSERT_TRUE(overlap.has_value());
+  EXPECT_NE(overlap->find("area of 0.75"), std::string::npos) << *overlap;
+}
+
+TEST(PatchIntersection, TouchingIsLegal) {
+  const Patch floor = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  // Shared edge at a right angle, coplanar neighbours, a shared corner.
+  EXPECT_FALSE(patchesInterpenetrate(floor, square({0, 0, 0}, {0, 0, 1}, {1, 0, 0})));
+  EXPECT_FALSE(patchesInterpenetrate(floor, square({1, 0, 0}, {1, 0, 0}, {0, 1, 0})));
+  EXPECT_FALSE(patchesInterpenetrate(floor, square({1, 1, 0}, {0, 0, 1}, {1, 0, 0})));
+  // A block face standing on the floor's interior: its bottom edge lies on the floor.
+  EXPECT_FALSE(patchesInterpenetrate(floor, square({0.5, 0.2, 0}, {0, 0.5, 0}, {0, 0, 1})));
+  // Parallel and apart, and a wall beside the floor that does not reach it.
+  EXPECT_FALSE(patchesInterpenetrate(floor, square({0, 0, 1}, {1, 0, 0}, {0, 1, 0})));
+  EXPECT_FALSE(patchesInterpenetrate(floor, square({2, 0, -1}, {0, 1, 0}, {0, 0, 2})));
+}
+
+TEST(CoincidentPoints, TheKernelIsZeroNotNaN) {
+  const Patch p = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  EXPECT_EQ(unoccludedKernel(p, {0.5, 0.5, 0}, p, {0.5, 0.5, 0}), 0.0);
+}
+
+// Crossing patches share points where the kernel was 0/0; with occluders, the product path
+// sized its rays by counting positive kernels and filled them skipping non-positive ones, so
+// a NaN overflowed the buffer. Every path must give a finite coupling on such a link (the
+// input layer rejects it, but the kernel must not corrupt memory on it).
+TEST(CoincidentPoints, EveryPathStaysFiniteOnCrossingPatches) {
+  const Patch receiver = square({0, 0, 0}, {1, 0, 2}, {0, 1, 0});
+  const Patch source = square({0, 1, 1}, {1, 0, 0}, {0, -1, 0});
+  OccluderScene scene;
+  scene.addParallelogram(square({-1, -1, 0.5}, {1.5, 0, 0}, {0, 3, 0}));
+  scene.commit();
+  const Link link{receiver, source, &scene};
+  CouplingAccumulator accumulator;
+  const RuleSamples samples = findRule("FullGauss")->samples(0);
+  for (int degree = 0; degree <= 3; ++degree) {
+    const WeightedBasisTable rb = makeWeightedBasisTable(samples.receiver, degree);
+    const WeightedBasisTable sb = makeWeightedBasisTable(samples.source, degree);
+    LinkIntegral product, scattered;
+    accumulator.product(link, samples.receiver, rb, samples.source, sb, product);
+    accumulator.scattered(link, testing::flattenSamples(samples), degree, scattered);
+    EXPECT_TRUE(product.coupling.allFinite()) << "degree " << degree;
+    EXPECT_TRUE(scattered.coupling.allFinite()) << "degree " << degree;
+    EXPECT_LE(product.raysCast, samples.receiver.size() * samples.source.size());
+    EXPECT_EQ(product.raysCast, scattered.raysCast);
+  }
+}
+
+}  // namespace
+}  // namespace radquad
