@@ -21,14 +21,47 @@ bool pointOnPatch(const Eigen::Vector3d& point, const Patch& patch, double toler
   return u >= -slackU && u <= 1.0 + slackU && v >= -slackV && v <= 1.0 + slackV;
 }
 
-// Quadrant c = 2 cu + cv of a parallelogram (the quadtree's child numbering).
-Patch quadrant(const Patch& patch, int c) {
-  Patch child = patch;
-  child.edgeU = 0.5 * patch.edgeU;
-  child.edgeV = 0.5 * patch.edgeV;
-  child.origin = patch.origin + (c / 2) * child.edgeU + (c % 2) * child.edgeV;
-  child.area = 0.25 * patch.area;
-  return child;
+// The part of an element over a rectangle of its parameter square.
+Patch subPatch(const Patch& element, double u0, double v0, double du, double dv) {
+  Patch piece = element;
+  piece.origin = element.origin + u0 * element.edgeU + v0 * element.edgeV;
+  piece.edgeU = du * element.edgeU;
+  piece.edgeV = dv * element.edgeV;
+  piece.area = du * dv * element.area;
+  return piece;
+}
+
+// Whether a piece of `element` is more than twice as long as it is wide (physical lengths).
+template <typename Square>
+bool longPiece(const Patch& element, const Square& square) {
+  const double lengthU = square.du * element.edgeU.norm();
+  const double lengthV = square.dv * element.edgeV.norm();
+  return lengthU > 2.0 * lengthV || lengthV > 2.0 * lengthU;
+}
+
+// The two halves of a long piece across its long side.
+template <typename Square>
+void halvePiece(const Patch& element, const Square& square, Square* halves) {
+  const bool alongU = square.du * element.edgeU.norm() > square.dv * element.edgeV.norm();
+  for (int h = 0; h < 2; ++h) {
+    halves[h] = square;
+    if (alongU) {
+      halves[h].du = 0.5 * square.du;
+      halves[h].u0 = square.u0 + h * halves[h].du;
+    } else {
+      halves[h].dv = 0.5 * square.dv;
+      halves[h].v0 = square.v0 + h * halves[h].dv;
+    }
+  }
+}
+
+// Quadrant c = 2 cu + cv of a piece (the quadtree's child numbering).
+template <typename Square>
+void quarterPiece(const Square& square, Square* quadrants) {
+  for (int c = 0; c < 4; ++c) {
+    quadrants[c] = Square{square.u0 + (c / 2) * 0.5 * square.du,
+                          square.v0 + (c % 2) * 0.5 * square.dv, 0.5 * square.du, 0.5 * square.dv};
+  }
 }
 
 }  // namespace
@@ -113,15 +146,15 @@ void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
   const int degree = side.basis.degree;
   const int orders = degree + 1;
   const int functions = side.basis.functions;
-  const double area = square.size * square.size;
+  const double area = square.du * square.dv;
   double alongU[GaussTables::kMaxPointsPerAxis][kMaxBasisDegree + 1];
   double alongV[GaussTables::kMaxPointsPerAxis][kMaxBasisDegree + 1];
   for (int i = 0; i < pointsU; ++i) {
-    const double u = square.u0 + square.size * side.samples.u[std::size_t(i * pointsV)];
+    const double u = square.u0 + square.du * side.samples.u[std::size_t(i * pointsV)];
     shiftedLegendreValues(degree, u, alongU[i]);
   }
   for (int j = 0; j < pointsV; ++j) {
-    const double v = square.v0 + square.size * side.samples.v[std::size_t(j)];
+    const double v = square.v0 + square.dv * side.samples.v[std::size_t(j)];
     shiftedLegendreValues(degree, v, alongV[j]);
   }
   placed.samples.u.resize(total);
@@ -135,8 +168,8 @@ void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
       const std::size_t k = std::size_t(i * pointsV + j);
       const std::size_t out = offset + k;
       const double weight = area * side.samples.weight[k];
-      placed.samples.u[out] = square.u0 + square.size * side.samples.u[k];
-      placed.samples.v[out] = square.v0 + square.size * side.samples.v[k];
+      placed.samples.u[out] = square.u0 + square.du * side.samples.u[k];
+      placed.samples.v[out] = square.v0 + square.dv * side.samples.v[k];
       placed.samples.weight[out] = weight;
       double* row = placed.basis.values.data() + out * std::size_t(functions);
       for (int p = 0; p < orders; ++p) {
@@ -147,25 +180,55 @@ void LinkIntegrator::placeSide(const GaussSide& side, int pointsU, int pointsV,
   }
 }
 
-void LinkIntegrator::collectPieces(const Patch& receiver, const Square& receiverSquare,
-                                   const Patch& source, const Square& sourceSquare, int depth) {
-  if (depth <= 0 || !elementsNear(receiver, source)) {
+void LinkIntegrator::collectPieces(const Patch& receiverElement, const Square& receiverSquare,
+                                   const Patch& sourceElement, const Square& sourceSquare,
+                                   int depth) {
+  const Patch receiver = subPatch(receiverElement, receiverSquare.u0, receiverSquare.v0,
+                                  receiverSquare.du, receiverSquare.dv);
+  const Patch source =
+      subPatch(sourceElement, sourceSquare.u0, sourceSquare.v0, sourceSquare.du, sourceSquare.dv);
+  const bool receiverLong = longPiece(receiverElement, receiverSquare);
+  const bool sourceLong = longPiece(sourceElement, sourceSquare);
+  const bool near = elementsNear(receiver, source);
+  const bool receiverCut = !near && straddlesPlane(source, receiver);
+  const bool sourceCut = !near && straddlesPlane(receiver, source);
+  if ((!near && !receiverCut && !sourceCut) ||
+      (depth <= 0 && (!near || (!receiverLong && !sourceLong)))) {
     pieces_.push_back(Piece{receiverSquare, sourceSquare});
     return;
   }
-  // Quadrant c = 2 cu + cv, as quadrant() above.
-  auto childSquare = [](const Square& square, int c) {
-    const double half = 0.5 * square.size;
-    return Square{square.u0 + (c / 2) * half, square.v0 + (c % 2) * half, half};
-  };
-  for (int cr = 0; cr < 4; ++cr) {
-    const Patch receiverQuadrant = quadrant(receiver, cr);
-    const Square receiverChild = childSquare(receiverSquare, cr);
-    for (int cs = 0; cs < 4; ++cs) {
-      const Patch sourceQuadrant = quadrant(source, cs);
-      if (!mayExchange(receiverQuadrant, sourceQuadrant)) continue;
-      collectPieces(receiverQuadrant, receiverChild, sourceQuadrant, childSquare(sourceSquare, cs),
-                    depth - 1);
+  // Near pieces: long pieces are halved first (the other piece kept whole, no depth spent);
+  // once both are nearly square, both are quartered, one level of depth. Pieces apart but cut
+  // by the other's plane: the cut ones are quartered, one level of depth.
+  Square receiverChildren[4], sourceChildren[4];
+  int receiverCount = 1, sourceCount = 1, childDepth = depth;
+  if (!near) {
+    receiverChildren[0] = receiverSquare;
+    sourceChildren[0] = sourceSquare;
+    if (receiverCut) quarterPiece(receiverSquare, receiverChildren), receiverCount = 4;
+    if (sourceCut) quarterPiece(sourceSquare, sourceChildren), sourceCount = 4;
+    childDepth = depth - 1;
+  } else if (receiverLong || sourceLong) {
+    if (receiverLong) halvePiece(receiverElement, receiverSquare, receiverChildren), receiverCount = 2;
+    else receiverChildren[0] = receiverSquare;
+    if (sourceLong) halvePiece(sourceElement, sourceSquare, sourceChildren), sourceCount = 2;
+    else sourceChildren[0] = sourceSquare;
+  } else {
+    quarterPiece(receiverSquare, receiverChildren);
+    quarterPiece(sourceSquare, sourceChildren);
+    receiverCount = sourceCount = 4;
+    childDepth = depth - 1;
+  }
+  for (int cr = 0; cr < receiverCount; ++cr) {
+    const Square& receiverChild = receiverChildren[cr];
+    const Patch receiverPiece = subPatch(receiverElement, receiverChild.u0, receiverChild.v0,
+                                         receiverChild.du, receiverChild.dv);
+    for (int cs = 0; cs < sourceCount; ++cs) {
+      const Square& sourceChild = sourceChildren[cs];
+      const Patch sourcePiece =
+          subPatch(sourceElement, sourceChild.u0, sourceChild.v0, sourceChild.du, sourceChild.dv);
+      if (!mayExchange(receiverPiece, sourcePiece)) continue;
+      collectPieces(receiverElement, receiverChild, sourceElement, sourceChild, childDepth);
     }
   }
 }

@@ -92,6 +92,16 @@ struct SolverLink {
   std::vector<int> candidates;               // candidate occluders (patch indices)
 };
 
+// The largest form factor sum over the elements (form_factor_check.cpp): at most
+// 1 for exact couplings. Elements whose sum exceeds
+// 1 + kFormFactorSumTolerance are counted as violations and reported.
+inline constexpr double kFormFactorSumTolerance = 0.05;
+struct FormFactorSums {
+  double maximum = 0.0;
+  int patch = -1;              // the patch of the element with the largest sum
+  std::size_t violations = 0;  // elements above 1 + kFormFactorSumTolerance
+};
+
 inline int keptColumns(const SolverLink& link) {
   return link.gatherPoints[0] * link.gatherPoints[1];
 }
@@ -115,6 +125,9 @@ struct SolveStatistics {
   double couplingSeconds = 0.0;
   // The coupling store's memory when the solve ended (it is then released).
   std::size_t couplingStoreBytes = 0;
+  FormFactorSums formFactorSums;
+  // Why the solve did not converge (empty when it did): the iteration cap, or divergence.
+  std::string failure;
 };
 
 class Solver {
@@ -138,6 +151,11 @@ class Solver {
   struct Impl;
 
   void createInitialLinks();
+  // Fills statistics_.formFactorSums from the couplings (form_factor_check.cpp).
+  void checkFormFactorSums();
+  // A description of the first patch whose mean radiosity is not finite or far beyond the
+  // physical bound; empty when there is none.
+  std::string divergence() const;
   bool refinementPass();
   void classifyLinks(std::vector<int>& created);
   bool oracleSaysRefine(const SolverLink& link) const;

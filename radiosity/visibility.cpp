@@ -44,6 +44,21 @@ bool mayExchange(const Patch& receiver, const Patch& source) {
   return sourceInFront && receiverInFront;
 }
 
+bool straddlesPlane(const Patch& plane, const Patch& element) {
+  const double margin = 1e-9 * std::sqrt(std::max(plane.area, element.area));
+  bool front = false, back = false;
+  for (const Vec& point : corners(element)) {
+    const double height = plane.normal.dot(point - plane.origin);
+    front = front || height > margin;
+    back = back || height < -margin;
+  }
+  return front && back;
+}
+
+bool cutByTangentPlane(const Patch& receiver, const Patch& source) {
+  return straddlesPlane(receiver, source) || straddlesPlane(source, receiver);
+}
+
 VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderScene& occluders)
     : scene_(scene), occluders_(occluders) {}
 

@@ -31,6 +31,14 @@ const char* linkClassName(LinkClass visibility);
 // front of the receiver's plane and some receiver point strictly in front of the source's.
 bool mayExchange(const Patch& receiver, const Patch& source);
 
+// Whether either element has corners strictly on both sides of the other's plane: the
+// clamped cosine then cuts the pair, and the kernel is discontinuous inside the link (a
+// block face and the floor it stands on, a wall and a light whose centre lies behind it).
+// Estimates from the elements' centres can see nothing there.
+bool cutByTangentPlane(const Patch& receiver, const Patch& source);
+// Whether `element` has corners strictly on both sides of `plane`'s plane.
+bool straddlesPlane(const Patch& plane, const Patch& element);
+
 struct Classification {
   LinkClass visibility = LinkClass::kUnoccluded;
   std::vector<int> candidates;  // patch indices

@@ -136,6 +136,14 @@ void runSolve(const SolveCommandOptions& command) {
       {"elements", hierarchy.size()},
       {"iterations", statistics.iterations},
       {"converged", statistics.converged},
+      {"failure", statistics.failure},
+      {"form_factor_sums",
+       {{"maximum", statistics.formFactorSums.maximum},
+        {"patch", statistics.formFactorSums.patch >= 0
+                      ? nlohmann::json(scene.patches[std::size_t(statistics.formFactorSums.patch)].name)
+                      : nlohmann::json(nullptr)},
+        {"tolerance", kFormFactorSumTolerance},
+        {"violations", statistics.formFactorSums.violations}}},
       {"final_change", statistics.finalChange},
       {"elapsed_seconds", statistics.elapsedSeconds},
       {"coupling_seconds", statistics.couplingSeconds},
@@ -159,6 +167,20 @@ void runSolve(const SolveCommandOptions& command) {
         {"fixed_coupling_seconds", fixed.statistics().couplingSeconds},
         {"relative_l2_difference", norm > 0.0 ? difference / norm : 0.0},
     };
+  }
+  if (statistics.formFactorSums.violations > 0) {
+    std::fprintf(stderr,
+                 "radquad solve: warning: %zu elements have form factor sums above 1 + %g (largest "
+                 "%.4g, on %s): some couplings create energy\n",
+                 statistics.formFactorSums.violations, kFormFactorSumTolerance,
+                 statistics.formFactorSums.maximum,
+                 describePatch(scene, std::size_t(statistics.formFactorSums.patch)).c_str());
+  }
+  if (!statistics.converged) {
+    // The JSON (with "converged": false and the reason) still goes to stdout for diagnosis;
+    // no render is written and the exit status is 3.
+    std::cout << out.dump(2) << "\n";
+    throw ComputationError(command.scene + ": the solve did not converge: " + statistics.failure);
   }
   if (!command.renderPath.empty()) {
     const Camera camera = scene.camera ? *scene.camera : defaultCamera(scene);

@@ -35,5 +35,25 @@ if [[ "$(head -c 8 "$work/cornell.png" | od -An -tx1 | tr -d ' \n')" != "89504e4
   echo "FAIL: --render did not write a PNG"; failures=$((failures + 1))
 fi
 
+# A solve that fails ends with exit status 3, the reason on stderr, "converged": false in the
+# JSON, and no render: two strips meeting along their long edge integrated without the
+# composite rule diverge; any scene cut off after two iterations has not converged.
+cat >"$work/strips.json" <<'JSON'
+{"patches": [
+ {"name": "strip a", "origin": [0,0,0], "edge_u": [0,0,0.05], "edge_v": [2,0,0], "reflectance": [0.7,0.7,0.7]},
+ {"name": "strip b", "origin": [0,0,0], "edge_u": [2,0,0], "edge_v": [0,0.05,0], "reflectance": [0.7,0.7,0.7]},
+ {"name": "lamp", "origin": [0,1,0], "edge_u": [2,0,0], "edge_v": [0,0,1], "reflectance": [0,0,0], "emission": [1,1,1]}
+]}
+JSON
+expect_status 3 "diverging solve" "diverged" solve "$work/strips.json" --singular-depth 0 --render "$work/diverged.png"
+if ! grep -q '"converged": false' "$work/out"; then
+  echo "FAIL: a diverged solve's JSON lacks \"converged\": false"; failures=$((failures + 1))
+fi
+if [[ -e "$work/diverged.png" ]]; then
+  echo "FAIL: a diverged solve wrote its render"; failures=$((failures + 1))
+fi
+expect_status 3 "iteration cap" "no convergence within 2 iterations" solve cornell --max-iterations 2
+expect_status 0 "strips with the composite rule" "" solve "$work/strips.json" --degree 2
+
 if [[ $failures -ne 0 ]]; then echo "$failures failure(s)"; exit 1; fi
 echo "all solve CLI checks passed"

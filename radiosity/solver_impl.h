@@ -1,0 +1,37 @@
+// The solver's state that its header keeps private (solver.cpp and the checks in
+// form_factor_check.cpp share it): the occluder scene of every patch, the Gauss tables, the
+// visibility classifier, per-thread link integrators and the coupling store.
+#pragma once
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <Eigen/Core>
+
+#include "kernel/occluder_scene.h"
+#include "radiosity/coupling_store.h"
+#include "radiosity/gauss_tables.h"
+#include "radiosity/link_integration.h"
+#include "radiosity/solver.h"
+#include "radiosity/source_projection.h"
+
+namespace radquad {
+
+struct Solver::Impl {
+  Impl(const Scene& scene, int degree)
+      : tables(degree),
+        classifier(scene, occluders),
+        couplings((degree + 1) * (degree + 1)),
+        projection(degree) {
+    for (const ScenePatch& patch : scene.patches) occluders.addParallelogram(patch.patch);
+    occluders.commit();
+  }
+  OccluderScene occluders;  // every patch; a link's own patches never block it (DESIGN.md)
+  GaussTables tables;
+  VisibilityClassifier classifier;
+  tbb::enumerable_thread_specific<LinkIntegrator> integrators;
+  CouplingStore couplings;  // each link's kept columns of K (rows receiver functions)
+  SourceProjection projection;
+  tbb::enumerable_thread_specific<Eigen::MatrixXd> scratch;  // a link's whole K
+};
+
+}  // namespace radquad
