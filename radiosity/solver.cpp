@@ -69,11 +69,13 @@ void Solver::classifyLinks(std::vector<int>& created) {
         impl_->classifier.classify(receiver.geometry, receiver.patch, source.geometry, source.patch,
                                    topLevel ? nullptr : &link.candidates);
     link.visibility = result.visibility;
+    link.occlusionProven = result.occlusionProven;
     link.candidates = std::move(result.candidates);
     rays[k] = result.raysCast;
+    // Occluded links carry nothing; unless proven, they keep their candidates for a split.
     if (link.visibility == LinkClass::kOccluded) {
-      link.active = false;  // occluded links carry nothing
-      link.candidates.clear();
+      link.active = false;
+      if (link.occlusionProven) link.candidates.clear();
     }
   });
   for (std::uint64_t count : rays) statistics_.classificationRays += count;
@@ -131,7 +133,10 @@ bool Solver::oracleSaysRefine(const SolverLink& link) const {
     }
   }
   double estimate = formFactor * std::max(0.0, source.meanRadiosity().maxCoeff());
-  if (link.visibility == LinkClass::kPartial) estimate *= options_.partialFactor;
+  // Partial links are less certain; so are occluded ones, whose class rests on rays between
+  // stratum centres that can miss a sliver of visibility: one whose estimate calls for a
+  // split is split, and its children classified again.
+  if (link.visibility != LinkClass::kUnoccluded) estimate *= options_.partialFactor;
   return estimate > options_.bfEpsilon * radiosityScale_;
 }
 
@@ -139,18 +144,24 @@ bool Solver::oracleSaysRefine(const SolverLink& link) const {
 // breadth first: one wave of splits (sequential: it creates elements and links in a fixed
 // order), then the new links' classification (parallel), then the next wave on them.
 bool Solver::refinementPass() {
+  // Active links, and occluded ones (carrying nothing) that the oracle may still split.
+  auto examined = [](const SolverLink& link) {
+    return link.active ||
+           (link.visibility == LinkClass::kOccluded && !link.occlusionProven && !link.split);
+  };
   std::vector<int> pending;
   for (std::size_t k = 0; k < links_.size(); ++k) {
-    if (links_[k].active) pending.push_back(int(k));
+    if (examined(links_[k])) pending.push_back(int(k));
   }
   bool refined = false;
   while (!pending.empty()) {
     std::vector<int> created;
     for (int index : pending) {
-      if (!links_[std::size_t(index)].active) continue;
+      if (!examined(links_[std::size_t(index)])) continue;
       if (!oracleSaysRefine(links_[std::size_t(index)])) continue;
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
+      parent.split = true;
       parent.computed = false;
       if (parent.slot >= 0) {
         impl_->couplings.release(keptColumns(parent), std::exchange(parent.slot, -1));
@@ -172,8 +183,9 @@ bool Solver::refinementPass() {
                          (*hierarchy_)[link.source].geometry)) {
           continue;
         }
-        link.visibility = visibility;
-        if (visibility == LinkClass::kPartial) link.candidates = candidates;
+        // Children of an occluded link are classified again, against its candidates.
+        link.visibility = visibility == LinkClass::kOccluded ? LinkClass::kPartial : visibility;
+        if (link.visibility == LinkClass::kPartial) link.candidates = candidates;
         links_.push_back(std::move(link));
         created.push_back(int(links_.size() - 1));
       }
@@ -486,7 +498,7 @@ double Solver::pushPull() {
 void Solver::countLinks() {
   statistics_.unoccludedLinks = statistics_.partialLinks = statistics_.occludedLinks = 0;
   for (const SolverLink& link : links_) {
-    if (link.visibility == LinkClass::kOccluded) {
+    if (link.visibility == LinkClass::kOccluded && !link.split) {
       ++statistics_.occludedLinks;
     } else if (link.active) {
       ++(link.visibility == LinkClass::kUnoccluded ? statistics_.unoccludedLinks

@@ -79,7 +79,12 @@ struct SolverLink {
   int receiver = 0;
   int source = 0;
   LinkClass visibility = LinkClass::kUnoccluded;
+  // Whether the link carries energy now. Inactive: replaced by its children (split), or
+  // occluded (every classification ray blocked: it carries nothing, but the refinement passes
+  // still examine it and split it where its estimate, counted as partial, is too large).
   bool active = true;
+  bool split = false;
+  bool occlusionProven = false;  // occluded by one candidate (blocksShaft): never examined
   bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
   int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
   std::array<int, 4> rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}

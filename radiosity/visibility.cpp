@@ -59,6 +59,40 @@ bool cutByTangentPlane(const Patch& receiver, const Patch& source) {
   return straddlesPlane(receiver, source) || straddlesPlane(source, receiver);
 }
 
+bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& source) {
+  const std::array<Vec, 4> rc = corners(receiver), sc = corners(source);
+  const double size = std::sqrt(std::max({occluder.area, receiver.area, source.area}));
+  const double margin = 1e-9 * size;
+  std::array<double, 4> hr, hs;
+  for (int k = 0; k < 4; ++k) {
+    hr[std::size_t(k)] = occluder.normal.dot(rc[std::size_t(k)] - occluder.origin);
+    hs[std::size_t(k)] = occluder.normal.dot(sc[std::size_t(k)] - occluder.origin);
+  }
+  const bool receiverAbove = hr[0] > 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double r = receiverAbove ? hr[std::size_t(k)] : -hr[std::size_t(k)];
+    const double s = receiverAbove ? -hs[std::size_t(k)] : hs[std::size_t(k)];
+    if (!(r > margin) || !(s > margin)) return false;  // the plane does not separate them
+  }
+  // Inside the parallelogram: the crossing point's coordinates along its edges in [0, 1],
+  // kept away from the border by the margin.
+  const Vec& a = occluder.edgeU;
+  const Vec& b = occluder.edgeV;
+  const double aa = a.squaredNorm(), ab = a.dot(b), bb = b.squaredNorm();
+  const double determinant = aa * bb - ab * ab;
+  const double slackU = margin / std::sqrt(aa), slackV = margin / std::sqrt(bb);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const double t = hr[std::size_t(i)] / (hr[std::size_t(i)] - hs[std::size_t(j)]);
+      const Vec p = rc[std::size_t(i)] + t * (sc[std::size_t(j)] - rc[std::size_t(i)]) - occluder.origin;
+      const double pa = a.dot(p), pb = b.dot(p);
+      const double u = (bb * pa - ab * pb) / determinant, v = (aa * pb - ab * pa) / determinant;
+      if (!(u > slackU && u < 1.0 - slackU && v > slackV && v < 1.0 - slackV)) return false;
+    }
+  }
+  return true;
+}
+
 VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderScene& occluders)
     : scene_(scene), occluders_(occluders) {}
 
@@ -204,6 +238,14 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
   if (segments.size() > 0 && traceBatch()) result.visibility = LinkClass::kPartial;
   // No pair faces the other way round: nothing to trace, kept partial (conservative).
   if (result.raysCast == 0) result.visibility = LinkClass::kPartial;
+  if (result.visibility == LinkClass::kOccluded) {
+    for (int patch : result.candidates) {
+      if (blocksShaft(scene_.patches[std::size_t(patch)].patch, receiver, source)) {
+        result.occlusionProven = true;
+        break;
+      }
+    }
+  }
   return result;
 }
 

@@ -41,9 +41,19 @@ bool straddlesPlane(const Patch& plane, const Patch& element);
 
 struct Classification {
   LinkClass visibility = LinkClass::kUnoccluded;
+  // For an occluded link: whether one candidate provably blocks every segment between the
+  // elements (blocksShaft); otherwise the class rests on the rays alone.
+  bool occlusionProven = false;
   std::vector<int> candidates;  // patch indices
   std::uint64_t raysCast = 0;
 };
+
+// Whether `occluder` blocks every segment from `receiver` to `source`: its plane strictly
+// separates the two elements and the 16 points where the segments between their corners
+// cross that plane lie inside it. The segments between two convex sets fill the convex hull
+// of their union, whose section by a separating plane is the hull of those 16 points, so
+// this is exact and conservative (a margin of 1e-9 of the size keeps it so under rounding).
+bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& source);
 
 class VisibilityClassifier {
  public:
