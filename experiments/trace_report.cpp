@@ -145,4 +145,12 @@ nlohmann::json verificationJson(const Scene& scene, const std::vector<Eigen::Vec
   return out;
 }
 
+nlohmann::json verifySolution(const Scene& scene, const std::vector<Eigen::Vector3d>& solved,
+                              const TraceOptions& options, bool quiet) {
+  const TraceResult trace = runTrace(scene, options, quiet, "radquad solve --verify");
+  nlohmann::json out = {{"samples", options.samples}, {"seed", options.seed}};
+  out.update(verificationJson(scene, solved, trace));
+  return out;
+}
+
 }  // namespace radquad

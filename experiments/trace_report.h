@@ -47,4 +47,9 @@ nlohmann::json traceCountsJson(const TraceResult& trace);
 nlohmann::json verificationJson(const Scene& scene, const std::vector<Eigen::Vector3d>& solved,
                                 const TraceResult& trace);
 
+// `radquad solve --verify N`: traces the scene with `options` (progress on stderr unless
+// `quiet`) and returns verificationJson with the samples and seed echoed.
+nlohmann::json verifySolution(const Scene& scene, const std::vector<Eigen::Vector3d>& solved,
+                              const TraceOptions& options, bool quiet);
+
 }  // namespace radquad

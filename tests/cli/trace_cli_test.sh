@@ -2,7 +2,7 @@
 # `radquad trace` through the real binary: bad options and scenes exit with status 2 and a
 # message naming the input; a good run prints the documented JSON, the patches of
 # `radquad solve` in the same order, the same numbers for 1 and 2 threads, and --out writes
-# the same object.
+# the same object; `radquad solve --verify N` adds a verification object.
 # Usage: RADQUAD=PATH/TO/radquad trace_cli_test.sh (or the path as the first argument)
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/expect_status.sh"
@@ -62,6 +62,46 @@ if strip(one) != strip(two):
     problems.append("1 and 2 threads differ")
 if strip(one) != strip(written):
     problems.append("--out differs from stdout")
+for problem in problems:
+    print("FAIL:", problem)
+sys.exit(1 if problems else 0)
+PY
+
+# solve --verify: the solve JSON gains a verification object against a trace.
+expect_status 2 "bad --verify" "--verify 0: out of range" solve cornell --degree 0 --verify 0
+expect_status 2 "bad --verify-seed" "--verify-seed x" solve cornell --degree 0 --verify 10 --verify-seed x
+expect_status 0 "solve --verify" "" solve cornell --degree 0 --verify 2000 --quiet
+if ! "$python" - "$work/out" <<'PY'; then failures=$((failures + 1)); fi
+import json, sys
+solve = json.load(open(sys.argv[1]))
+problems = []
+verification = solve.get("verification")
+if not isinstance(verification, dict):
+    problems.append("no verification object")
+    verification = {}
+for key in ["samples", "seed", "patches", "worst_relative_difference",
+            "worst_difference_in_standard_errors", "mean_absolute_relative_difference"]:
+    if key not in verification:
+        problems.append(f"verification lacks '{key}'")
+if verification.get("samples") != 2000 or verification.get("seed") != 0:
+    problems.append("samples or seed not echoed")
+patches = verification.get("patches", [])
+if [p.get("name") for p in patches] != [p["name"] for p in solve["patches"]]:
+    problems.append("verification patches differ from the solve's")
+for patch in patches:
+    for key in ["mean_radiosity", "standard_error", "relative_difference",
+                "difference_in_standard_errors"]:
+        if len(patch.get(key, [])) != 3:
+            problems.append(f"{patch.get('name')}: {key}")
+    solved = next(p["mean_radiosity"] for p in solve["patches"] if p["name"] == patch["name"])
+    for c in range(3):
+        expected = solved[c] / patch["mean_radiosity"][c] - 1
+        if abs(patch["relative_difference"][c] - expected) > 1e-12:
+            problems.append(f"{patch['name']}: relative_difference {c}")
+worst = verification.get("worst_relative_difference") or {}
+largest = max(abs(v) for p in patches for v in p["relative_difference"])
+if worst.get("patch") not in [p["name"] for p in patches] or abs(abs(worst.get("value", 0)) - largest) > 1e-15:
+    problems.append(f"worst_relative_difference {worst}")
 for problem in problems:
     print("FAIL:", problem)
 sys.exit(1 if problems else 0)
