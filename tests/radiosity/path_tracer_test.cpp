@@ -1,5 +1,5 @@
 // The Monte Carlo path tracer against exact answers: the white furnace, its energy balance
-// with one emitting face, and two closed-form form factors (Howell C-11 and C-14), the second
+// with one emitting face, a box standing in it, and two closed-form form factors (Howell C-11 and C-14), the second
 // with receiver points touching the emitter.
 #include <gtest/gtest.h>
 
@@ -71,6 +71,41 @@ TEST(PathTracerFurnaceTest, OneEmittingFaceConservesEnergy) {
   }
   for (std::size_t p = 1; p < scene.patches.size(); ++p) {
     EXPECT_GT(result.patches[0].meanRadiosity[0], result.patches[p].meanRadiosity[0]);
+  }
+}
+
+// A patch along `facing`: the edges are swapped when edge_u x edge_v points the other way.
+Patch facingPatch(const Vec& origin, const Vec& u, const Vec& v, const Vec& facing) {
+  return u.cross(v).dot(facing) >= 0.0 ? Patch::make(origin, u, v, "block")
+                                       : Patch::make(origin, v, u, "block");
+}
+
+// The furnace with a rotated box standing on its floor (face 0, z = 0), every patch E = 1 and
+// rho = 0.5: a point outside the box sees only front sides, so B = 2 there, on the box's
+// outward faces and on every wall but the floor; the floor under the box sees only the box's
+// back sides, so B = E = 1 there, and the floor's mean is 2 - (box footprint) / 1. Exercises
+// patches touching along edges at arbitrary angles, and back sides that end paths.
+TEST(PathTracerFurnaceTest, ABoxStandingInTheFurnace) {
+  Scene scene = testing::furnaceScene(1.0, 0.5);
+  ASSERT_GT(scene.patches[0].patch.normal.z(), 0.99);
+  const double angle = 0.3, width = 0.4, depth = 0.35, height = 0.3;
+  const Vec ex = width * Vec(std::cos(angle), std::sin(angle), 0.0);
+  const Vec ey = depth * Vec(-std::sin(angle), std::cos(angle), 0.0);
+  const Vec ez = height * Vec::UnitZ();
+  const Vec base = Vec(0.5, 0.5, 0.0) - 0.5 * ex - 0.5 * ey;
+  const Patch faces[5] = {facingPatch(base, ey, ez, -ex), facingPatch(base + ex, ey, ez, ex),
+                          facingPatch(base, ex, ez, -ey), facingPatch(base + ey, ex, ez, ey),
+                          facingPatch(base + ez, ex, ey, ez)};
+  for (const Patch& face : faces) {
+    scene.patches.push_back(ScenePatch{"box", face, Vec::Constant(0.5), Vec::Constant(1.0)});
+  }
+  const TraceResult result = trace(scene, 4096);
+  for (std::size_t p = 0; p < scene.patches.size(); ++p) {
+    const double exact = p == 0 ? 2.0 - width * depth : 2.0;
+    const double mean = result.patches[p].meanRadiosity[0];
+    const double error = result.patches[p].standardError[0];
+    EXPECT_LT(error, 0.01 * exact) << "patch " << p;
+    EXPECT_NEAR(mean, exact, 4.5 * error) << "patch " << p;
   }
 }
 
