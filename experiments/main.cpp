@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   radquad::addFiguresCommand(app);
   radquad::addSolveCommand(app);
   radquad::addAdaptiveCommand(app);
+  radquad::addTraceCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

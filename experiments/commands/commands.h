@@ -13,5 +13,6 @@ void addStudyCommand(CLI::App& app);
 void addFiguresCommand(CLI::App& app);
 void addSolveCommand(CLI::App& app);
 void addAdaptiveCommand(CLI::App& app);
+void addTraceCommand(CLI::App& app);
 
 }  // namespace radquad

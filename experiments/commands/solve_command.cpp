@@ -3,7 +3,9 @@
 // hierarchical Galerkin radiosity solver and prints one JSON object on stdout (options
 // echoed, kernel evaluations, links by class, elements, iterations, time, and every patch's
 // mean radiosity; with --compare, the same scene solved with fixed rules and the relative L2
-// difference of the two solutions); progress goes to stderr.
+// difference of the two solutions; with --verify N, every patch's mean radiosity against a
+// Monte Carlo reference of N samples per patch, radiosity/path_tracer.h); progress goes to
+// stderr.
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -12,10 +14,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/scene_input.h"
+#include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "radiosity/render.h"
 #include "radiosity/solver.h"
@@ -38,6 +42,8 @@ struct SolveCommandOptions {
   int singularDepth = SolverOptions{}.singularDepth;
   int threads = 0;
   bool quiet = false;
+  std::string verifySamples;  // empty: no verification
+  std::string verifySeed = "0";
 };
 
 nlohmann::json vectorJson(const Eigen::Vector3d& v) {
@@ -65,6 +71,11 @@ void runSolve(const SolveCommandOptions& command) {
   if (!(command.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
   if (!(command.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
   if (!(command.tolerance > 0.0)) throw InputError("--tolerance: must be > 0");
+  TraceOptions verify;
+  verify.seed = parseDecimalOption(command.verifySeed, "--verify-seed", 0, ~std::uint64_t(0));
+  if (!command.verifySamples.empty()) {
+    verify.samples = parseDecimalOption(command.verifySamples, "--verify", 1, kMaxTraceSamples);
+  }
   const Scene scene = loadScene(command.scene);
 
   std::optional<tbb::global_control> threadLimit;
@@ -102,11 +113,12 @@ void runSolve(const SolveCommandOptions& command) {
   const Hierarchy& hierarchy = solver.hierarchy();
 
   nlohmann::json patches = nlohmann::json::array();
+  std::vector<Eigen::Vector3d> solved;
   for (std::size_t p = 0; p < scene.patches.size(); ++p) {
-    patches.push_back(
-        {{"name", scene.patches[p].name},
-         {"area", scene.patches[p].patch.area},
-         {"mean_radiosity", vectorJson(hierarchy[hierarchy.root(int(p))].meanRadiosity())}});
+    solved.push_back(hierarchy[hierarchy.root(int(p))].meanRadiosity());
+    patches.push_back({{"name", scene.patches[p].name},
+                       {"area", scene.patches[p].patch.area},
+                       {"mean_radiosity", vectorJson(solved.back())}});
   }
   nlohmann::json out = {
       {"scene", command.scene},
@@ -182,6 +194,9 @@ void runSolve(const SolveCommandOptions& command) {
     std::cout << out.dump(2) << "\n";
     throw ComputationError(command.scene + ": the solve did not converge: " + statistics.failure);
   }
+  if (!command.verifySamples.empty()) {
+    out["verification"] = verifySolution(scene, solved, verify, command.quiet);
+  }
   if (!command.renderPath.empty()) {
     const Camera camera = scene.camera ? *scene.camera : defaultCamera(scene);
     writeFileAtomically(command.renderPath, encodePng(renderRadiosity(hierarchy, camera)));
@@ -241,6 +256,11 @@ void addSolveCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->capture_default_str();
   command->add_flag("--quiet", options->quiet, "No progress on stderr");
+  command->add_option("--verify", options->verifySamples,
+                      "Also trace the scene with N Monte Carlo samples per patch and compare "
+                      "(adds `verification`)");
+  command->add_option("--verify-seed", options->verifySeed, "Seed of --verify, a decimal 0..2^64-1")
+      ->capture_default_str();
   command->callback([options] { runSolve(*options); });
 }
 
