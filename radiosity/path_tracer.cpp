@@ -98,7 +98,7 @@ double geometryTerm(const Vec& x, const Vec& nx, const Vec& y, const Vec& ny) {
 class PathSampler {
  public:
   PathSampler(const Scene& scene, std::uint64_t seed, std::uint64_t samples)
-      : rays_(scene), key_(philoxKey(seed)), samples_(samples) {
+      : rays_(scene), key_(philoxKey(seed)) {
     for (const ScenePatch& source : scene.patches) {
       TracePatch patch;
       patch.patch = source.patch;
@@ -128,7 +128,6 @@ class PathSampler {
 
   TraceScene rays_;
   PhiloxKey key_;
-  std::uint64_t samples_;
   std::uint64_t grid_ = 1;  // floor(sqrt(samples))
   std::vector<TracePatch> patches_;
   std::vector<int> emitters_;
