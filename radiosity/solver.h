@@ -161,6 +161,8 @@ class Solver {
   // A description of the first patch whose mean radiosity is not finite or far beyond the
   // physical bound; empty when there is none.
   std::string divergence() const;
+  // The element of a link to split: 0 receiver, 1 source (solver.cpp).
+  int splitSide(const SolverLink& link) const;
   bool refinementPass();
   void classifyLinks(std::vector<int>& created);
   bool oracleSaysRefine(const SolverLink& link) const;

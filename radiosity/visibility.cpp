@@ -93,6 +93,25 @@ bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& sour
   return true;
 }
 
+VisibilityVariation visibilityVariation(const OccluderScene& occluders, const Patch& receiver,
+                                        const Patch& source) {
+  // Over the quadrants' centres of `varied`, seen from `fixed`'s centre: whether some ray is
+  // blocked and some not (pairs with a zero kernel do not count).
+  auto varies = [&](const Patch& varied, bool variedIsReceiver, const Patch& fixed) {
+    const Vec centre = fixed.centre();
+    int visible = 0, blocked = 0;
+    for (int q = 0; q < 4; ++q) {
+      const Vec point = varied.pointAt(0.25 + 0.5 * (q / 2), 0.25 + 0.5 * (q % 2));
+      const Vec& from = variedIsReceiver ? point : centre;
+      const Vec& to = variedIsReceiver ? centre : point;
+      if (unoccludedKernel(receiver, from, source, to) <= 0.0) continue;
+      (occluders.segmentVisible(from, to) ? visible : blocked) += 1;
+    }
+    return visible > 0 && blocked > 0;
+  };
+  return {varies(receiver, true, source), varies(source, false, receiver)};
+}
+
 VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderScene& occluders)
     : scene_(scene), occluders_(occluders) {}
 

@@ -39,6 +39,17 @@ bool cutByTangentPlane(const Patch& receiver, const Patch& source);
 // Whether `element` has corners strictly on both sides of `plane`'s plane.
 bool straddlesPlane(const Patch& plane, const Patch& element);
 
+// Whether a partially visible link's visibility changes across each element: rays from the
+// centres of the receiver's four quadrants to the source's centre (receiver), and from the
+// receiver's centre to the source's quadrants' centres (source), where the unoccluded kernel
+// is positive; an element varies when its rays disagree. `occluders` holds every patch (rays
+// are shortened at both ends, so the link's own patches never block them).
+struct VisibilityVariation {
+  bool receiver = false, source = false;
+};
+VisibilityVariation visibilityVariation(const OccluderScene& occluders, const Patch& receiver,
+                                        const Patch& source);
+
 struct Classification {
   LinkClass visibility = LinkClass::kUnoccluded;
   // For an occluded link: whether one candidate provably blocks every segment between the
