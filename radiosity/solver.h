@@ -44,7 +44,7 @@ struct SolverOptions {
   // BF oracle: refine a link when F_estimate * B_source (* partialFactor if partial) exceeds
   // bfEpsilon times the scene's radiosity scale, its emitted power over its total area
   // (sum_i max_c E_i,c A_i / sum_i A_i: the mean radiosity before any reflection) ...
-  double bfEpsilon = 0.1;
+  double bfEpsilon = 0.05;
   // ... and the larger element's area exceeds minArea (scene units squared); a value <= 0
   // means 1e-4 of the largest patch's area.
   double minArea = 0.0;

@@ -111,6 +111,29 @@ TEST(VisibilityTest, BlocksShaftIsExactOnTheCornerSegments) {
                            receiver, source));
 }
 
+// A wall element straddling the outline of a plate hung just in front of it, and a large floor
+// far away: the visibility changes across the wall element (its lower part, z < 1.4, is behind the plate),
+// not across the floor, so refinement must split the wall element (Solver::splitSide).
+TEST(VisibilityTest, VariationFindsTheElementThatHoldsTheShadowBoundary) {
+  Scene scene;
+  const Patch wall = Patch::make(Vec(0, 1, 1), Vec(0, 1, 0), Vec(0, 0, 1), "wall element");
+  const Patch floor = Patch::make(Vec(0.5, 0, 0), Vec(0, 0, 4), Vec(4, 0, 0), "floor");
+  const Patch plate = Patch::make(Vec(0.003, 0, 0), Vec(0, 5, 0), Vec(0, 0, 1.4), "plate");
+  ASSERT_GT(wall.normal.x(), 0.0);
+  ASSERT_GT(floor.normal.y(), 0.0);
+  for (const Patch& p : {wall, floor, plate}) {
+    scene.patches.push_back(ScenePatch{"p", p, Vec::Constant(0.5), Vec::Zero()});
+  }
+  const ClassifierScene setup(scene);
+  const VisibilityVariation variation = visibilityVariation(setup.occluders, wall, floor);
+  EXPECT_TRUE(variation.receiver);
+  EXPECT_FALSE(variation.source);
+  // Seen the other way round, the floor receiving from the wall element.
+  const VisibilityVariation reversed = visibilityVariation(setup.occluders, floor, wall);
+  EXPECT_FALSE(reversed.receiver);
+  EXPECT_TRUE(reversed.source);
+}
+
 TEST(VisibilityTest, OneVisibleGridRayMakesThePartialClass) {
   // A wall at z = 0.5 with a small hole where exactly one grid ray crosses: the ray from
   // the receiver's grid point (u, v) = (0.875, 0.125) to the emitter's (0.125, 0.875), both
