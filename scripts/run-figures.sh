@@ -2,7 +2,7 @@
 # The main job: installs what is missing, builds, and regenerates every committed result:
 # Figures 1 and 2 (`radquad figures`: results/fig1.json, results/fig2.json, plots/fig1.*,
 # plots/fig2.*) and the adaptive method's savings and Plate 1 (`radquad adaptive`:
-# results/adaptive.json, results/plate1.png, plots/adaptive.png). About 90 s on 2 cores once built.
+# results/adaptive.json, results/plate1.png, plots/adaptive.png). About 4 minutes on 2 cores once built.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh" release
