@@ -43,10 +43,9 @@ TEST(SolverAgainstTrace, ElongatedTouchingStrips) {
   TraceOptions traceOptions;
   traceOptions.samples = 1 << 16;
   const TraceResult trace = tracePatches(scene, traceOptions);
-  // Degrees 1 and 2 agree with the trace to 0.1%; degree 0 converges 6% bright at the default
-  // --bf-eps and 3% even at 0.002: piecewise-constant elements along a shared edge (links
-  // accepted at a level where the source's radiosity still varies strongly toward the edge).
-  for (const auto& [degree, tolerance] : {std::pair{0, 0.07}, std::pair{1, 0.01}, std::pair{2, 0.01}}) {
+  // Degrees 1 and 2 agree with the trace to 0.1%, degree 0 to 0.7% (6% bright with the
+  // midpoint rule it had before: one point per axis overestimates the peaked kernel).
+  for (const auto& [degree, tolerance] : {std::pair{0, 0.01}, std::pair{1, 0.01}, std::pair{2, 0.01}}) {
     SolverOptions options;
     options.degree = degree;
     Solver solver(scene, options);
