@@ -149,4 +149,20 @@ std::pair<double, double> Hierarchy::l2Difference(const Hierarchy& other, int po
   return {std::sqrt(difference), std::sqrt(norm)};
 }
 
+Hierarchy::PatchDifference Hierarchy::largestPatchDifference(const Hierarchy& other) const {
+  PatchDifference largest;
+  for (std::size_t p = 0; p < scene_->patches.size(); ++p) {
+    const Eigen::Vector3d mine = elements_[std::size_t(root(int(p)))].meanRadiosity();
+    const Eigen::Vector3d theirs = other[other.root(int(p))].meanRadiosity();
+    for (int c = 0; c < 3; ++c) {
+      if (theirs[c] == 0.0) continue;
+      const double difference = mine[c] / theirs[c] - 1.0;
+      if (std::abs(difference) > std::abs(largest.value) || largest.patch < 0) {
+        largest = {difference, int(p), c};
+      }
+    }
+  }
+  return largest;
+}
+
 }  // namespace radquad

@@ -65,6 +65,15 @@ class Hierarchy {
   // rule of `points` per axis on every leaf of the finer of the two at each point, summed
   // over channels. Returns {||B_this - B_other||, ||B_other||}.
   std::pair<double, double> l2Difference(const Hierarchy& other, int points = 4) const;
+  // The largest relative difference of a patch's mean radiosity from `other`'s, over patches
+  // and channels (|B / B_other - 1|, channels where B_other is 0 left out), with its patch and
+  // channel (0 red, 1 green, 2 blue); a global L2 difference can hide it.
+  struct PatchDifference {
+    double value = 0.0;
+    int patch = -1;
+    int channel = -1;
+  };
+  PatchDifference largestPatchDifference(const Hierarchy& other) const;
 
  private:
   void pushPullElement(int e, const Coefficients& down);

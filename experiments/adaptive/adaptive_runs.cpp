@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "experiments/atomic_file.h"
+#include "experiments/scene_input.h"
 #include "kernel/input_error.h"
 #include "radiosity/render.h"
 
@@ -106,6 +107,9 @@ void addComparison(nlohmann::json& run, const Solver& solver, const Timings& tim
   const SolveStatistics& s = solver.statistics();
   const SolveStatistics& f = fixed.statistics();
   run["relative_l2_difference"] = norm > 0.0 ? difference / norm : 0.0;
+  run["largest_patch_difference"] =
+      patchDifferenceJson(solver.hierarchy().largestPatchDifference(fixed.hierarchy()),
+                          solver.hierarchy().scene());
   run["evaluation_ratio"] = double(f.kernelEvaluations) / double(s.kernelEvaluations);
   run["time_ratio"] = fixedTimes.bestElapsed() / times.bestElapsed();
   run["coupling_time_ratio"] = fixedTimes.bestCoupling() / times.bestCoupling();

@@ -178,6 +178,8 @@ void runSolve(const SolveCommandOptions& command) {
         {"fixed_elapsed_seconds", fixed.statistics().elapsedSeconds},
         {"fixed_coupling_seconds", fixed.statistics().couplingSeconds},
         {"relative_l2_difference", norm > 0.0 ? difference / norm : 0.0},
+        {"largest_patch_difference",
+         patchDifferenceJson(hierarchy.largestPatchDifference(fixed.hierarchy()), scene)},
     };
   }
   if (statistics.formFactorSums.violations > 0) {

@@ -95,3 +95,30 @@ TEST(SolverDeterminismTest, ResultDoesNotDependOnTheThreadCount) {
 
 }  // namespace
 }  // namespace radquad
+
+namespace radquad {
+namespace {
+
+// The per-patch comparison of two solutions: the opposed squares with receiver reflectance
+// 0.6 against 0.3 (mean radiosity rho F for a black emitter of E = 1): the receiver differs
+// by exactly 0.6 / 0.3 - 1 = 1 in every channel, the emitter (B = E) not at all.
+TEST(PatchDifferenceTest, TheReceiverOfTwiceTheReflectanceIsTwiceAsBright) {
+  const Scene bright = testing::opposedSquaresScene(0.6);
+  const Scene dim = testing::opposedSquaresScene(0.3);
+  SolverOptions options;
+  options.degree = 1;
+  Solver a(bright, options), b(dim, options);
+  a.solve();
+  b.solve();
+  const Hierarchy::PatchDifference same = a.hierarchy().largestPatchDifference(a.hierarchy());
+  EXPECT_EQ(same.value, 0.0);
+  const Hierarchy::PatchDifference difference = a.hierarchy().largestPatchDifference(b.hierarchy());
+  EXPECT_EQ(difference.patch, 1);
+  EXPECT_EQ(difference.channel, 0);
+  EXPECT_NEAR(difference.value, 1.0, 1e-9);
+  const Hierarchy::PatchDifference reversed = b.hierarchy().largestPatchDifference(a.hierarchy());
+  EXPECT_NEAR(reversed.value, -0.5, 1e-9);
+}
+
+}  // namespace
+}  // namespace radquad
