@@ -89,6 +89,7 @@ def main():
     with tempfile.NamedTemporaryFile("w", dir=directory, delete=False, suffix=".tmp") as handle:
         json.dump(out, handle, indent=1)
         handle.write("\n")
+    os.chmod(handle.name, 0o644)
     os.replace(handle.name, args.out)
 
 
