@@ -12,6 +12,27 @@
 
 namespace radquad {
 
+void checkOutputPath(const std::filesystem::path& path, const std::string& option,
+                     const std::vector<std::filesystem::path>& inputs) {
+  const std::string named = option + " " + path.string();
+  std::error_code error;
+  for (const std::filesystem::path& input : inputs) {
+    if (std::filesystem::exists(path, error) && std::filesystem::equivalent(path, input, error)) {
+      throw InputError(named + ": is the input " + input.string() + "; refusing to overwrite it");
+    }
+  }
+  if (std::filesystem::is_directory(path, error)) throw InputError(named + ": is a folder");
+  const std::filesystem::path directory =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(directory, error)) {
+    throw InputError(named + ": the folder " + directory.string() + " does not exist");
+  }
+  if (::access(directory.c_str(), W_OK) != 0) {
+    throw InputError(named + ": cannot write in " + directory.string() + " (" +
+                     std::strerror(errno) + ")");
+  }
+}
+
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
   const std::filesystem::path directory =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");

@@ -5,11 +5,18 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace radquad {
 
 // Throws InputError naming the path when it cannot be written.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
+
+// Checked before any work: `path` (given as `option`) can be written (its folder exists and is
+// writable, and it is not a folder), and it is none of `inputs` (the same file under any
+// name). Throws InputError naming the option and the path otherwise.
+void checkOutputPath(const std::filesystem::path& path, const std::string& option,
+                     const std::vector<std::filesystem::path>& inputs);
 
 // Creates an output folder and its parents; throws InputError naming it when that fails.
 void createOutputDirectory(const std::filesystem::path& directory);

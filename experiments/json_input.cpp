@@ -14,8 +14,25 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
   if (!in) throw InputError(path.string() + ": cannot open for reading");
   std::ostringstream text;
   text << in.rdbuf();
+  // Keys seen in each open object, innermost last: a key given twice in one object is an
+  // error (nlohmann keeps the last one silently).
+  std::vector<std::vector<std::string>> openObjects;
+  const auto rejectDuplicateKeys = [&](int, nlohmann::json::parse_event_t event,
+                                       nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    if (event == Event::object_start) openObjects.emplace_back();
+    if (event == Event::object_end && !openObjects.empty()) openObjects.pop_back();
+    if (event == Event::key && !openObjects.empty()) {
+      const std::string key = parsed.get<std::string>();
+      for (const std::string& seen : openObjects.back()) {
+        if (seen == key) throw InputError(path.string() + ": duplicate key '" + key + "'");
+      }
+      openObjects.back().push_back(key);
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text.str());
+    return nlohmann::json::parse(text.str(), rejectDuplicateKeys);
   } catch (const nlohmann::json::parse_error& error) {
     throw InputError(path.string() + ": malformed JSON: " + error.what());
   } catch (const nlohmann::json::out_of_range& error) {

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "experiments/commands/commands.h"
 #include "kernel/input_error.h"
@@ -17,6 +18,21 @@ int main(int argc, char** argv) {
   radquad::addSolveCommand(app);
   radquad::addAdaptiveCommand(app);
   radquad::addTraceCommand(app);
+  // An unknown word where the command belongs is named (CLI11 would only say that a command
+  // is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      known = known || command->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    }
+    if (!known) {
+      std::cerr << "radquad: error: unknown command '" << argv[1] << "' (commands: " << names
+                << ")\n";
+      return radquad::kInputErrorExitStatus;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

@@ -97,6 +97,7 @@ void addAdaptiveCommand(CLI::App& app) {
   command->add_option("--plots", options->plotsDir, "Directory of plots/adaptive.png");
   command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   command->add_flag("--quiet", options->runs.quiet, "No progress on stderr");
   command->callback([options] { runAdaptive(*options); });

@@ -10,6 +10,7 @@
 
 #include "experiments/commands/commands.h"
 #include "experiments/json_input.h"
+#include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
@@ -21,6 +22,7 @@ struct LinkOptions {
   std::string linkPath;
   std::string ruleName;
   int degree = 0;
+  std::string seedText = "0";
   std::uint64_t seed = 0;
   int trials = 1;
 };
@@ -59,7 +61,12 @@ nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
            {{"form_factor", formFactorDeviation}, {"coupling", matrixToJson(deviation)}}}};
 }
 
-void runLink(const LinkOptions& options) {
+void runLink(LinkOptions options) {
+  options.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
+  if (options.trials > 1 && options.seed > ~std::uint64_t(0) - std::uint64_t(options.trials - 1)) {
+    throw InputError("--seed " + options.seedText + " with --trials " +
+                     std::to_string(options.trials) + ": the last seed would pass 2^64 - 1");
+  }
   const LinkDescription description = readLinkFile(options.linkPath);
   const PreparedRule prepared(findRule(options.ruleName), options.degree);
   const SceneLink sceneLink = buildSceneLink(description);
@@ -111,7 +118,8 @@ void addLinkCommand(CLI::App& app) {
       ->add_option("--degree", options->degree,
                    "Basis degree d, 0..8 ((d+1)^2 functions per patch)")
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of random rules")->capture_default_str();
+  command->add_option("--seed", options->seedText, "Seed of random rules, a decimal 0..2^64-1")
+      ->capture_default_str();
   command
       ->add_option("--trials", options->trials,
                    "Random rules: run T trials with seeds S..S+T-1 and report mean and "

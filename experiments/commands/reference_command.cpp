@@ -14,6 +14,7 @@
 
 #include "experiments/commands/commands.h"
 #include "experiments/json_input.h"
+#include "experiments/trace_report.h"
 #include "reference/gold_reference.h"
 #include "reference/stratified_reference.h"
 
@@ -23,6 +24,7 @@ namespace {
 struct ReferenceCommandOptions {
   std::string linkPath;
   int degree = 0;
+  std::string seedText = "0";
   std::uint64_t seed = 0;
   int replicates = ReferenceOptions{}.replicates;
   bool gold = false;
@@ -57,7 +59,8 @@ nlohmann::json goldToJson(const GoldReference& gold) {
   return out;
 }
 
-void runReference(const ReferenceCommandOptions& options) {
+void runReference(ReferenceCommandOptions options) {
+  options.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
   const LinkDescription description = readLinkFile(options.linkPath);
   const SceneLink sceneLink = buildSceneLink(description);
   ReferenceOptions referenceOptions;
@@ -107,7 +110,8 @@ void addReferenceCommand(CLI::App& app) {
                    "LINK.json: {\"receiver\": PATCH, \"source\": PATCH, \"occluders\": [PATCH...]}")
       ->required();
   command->add_option("--degree", options->degree, "Basis degree d, 0..8")->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of the reference draw")->capture_default_str();
+  command->add_option("--seed", options->seedText, "Seed of the reference draw, a decimal 0..2^64-1")
+      ->capture_default_str();
   command
       ->add_option("--replicates", options->replicates,
                    "Independent draws for the standard error (2..100000)")

@@ -76,6 +76,9 @@ void runSolve(const SolveCommandOptions& command) {
   if (!command.verifySamples.empty()) {
     verify.samples = parseDecimalOption(command.verifySamples, "--verify", 1, kMaxTraceSamples);
   }
+  if (!command.renderPath.empty()) {
+    checkOutputPath(command.renderPath, "--render", {command.scene});
+  }
   const Scene scene = loadScene(command.scene);
 
   std::optional<tbb::global_control> threadLimit;
@@ -249,6 +252,7 @@ void addSolveCommand(CLI::App& app) {
                    "Stop when the relative L2 change of patch radiosity is below this")
       ->capture_default_str();
   command->add_option("--max-iterations", options->maxIterations, "Iteration cap")
+      ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   command
       ->add_option("--singular-depth", options->singularDepth,
@@ -256,6 +260,7 @@ void addSolveCommand(CLI::App& app) {
       ->check(CLI::Range(0, 8))
       ->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   command->add_flag("--quiet", options->quiet, "No progress on stderr");
   command->add_option("--verify", options->verifySamples,

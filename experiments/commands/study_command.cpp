@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/study/study_output.h"
 
@@ -30,6 +31,7 @@ void addStudyCommand(CLI::App& app) {
                     "Also score every rule and the reference against the gold reference");
   command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
   command->callback([options] {
+    checkOutputPath(options->outPath, "--out", {options->configPath});
     runStudyToFile(options->configPath, options->outPath,
                    StudyOptions{options->gold, !options->quiet});
   });

@@ -35,6 +35,7 @@ void runTraceCommand(const TraceCommandOptions& command) {
     throw InputError("--threads " + std::to_string(command.threads) + ": must be >= 0 (0: all cores)");
   }
   options.threads = command.threads;
+  if (!command.out.empty()) checkOutputPath(command.out, "--out", {command.scene});
   const Scene scene = loadScene(command.scene);
   const TraceResult trace = runTrace(scene, options, command.quiet, "radquad trace");
 

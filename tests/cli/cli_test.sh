@@ -42,6 +42,16 @@ expect_error missing_key "missing key 'source'" link "$fixtures/missing_source.j
 expect_error bad_occluder "occluders[1]: degenerate patch" link "$fixtures/bad_occluders.json" --rule FullGauss
 expect_error crossing_patches "crossing_patches.json: receiver and source cross each other" link "$fixtures/crossing_patches.json" --rule FullGauss --degree 1
 expect_error coincident_patches "coincident_patches.json: receiver and source overlap" link "$fixtures/coincident_patches.json" --rule FullGauss
+expect_error duplicate_key "duplicate_key.json: duplicate key 'source'" link "$fixtures/duplicate_key.json" --rule FullGauss
+expect_error negative_seed "--seed -1: expected a decimal integer" link "$fixtures/good_link.json" --rule MonteCarlo --seed -1
+expect_error seed_overflow "the last seed would pass 2^64 - 1" link "$fixtures/good_link.json" --rule MonteCarlo --seed 18446744073709551615 --trials 2
+expect_error exponent_seed "--seed 1e3: expected a decimal integer" reference "$fixtures/good_link.json" --seed 1e3
+expect_error unknown_command "unknown command 'frobnicate'" frobnicate
+cp "$fixtures/good_link.json" "$scratch/config_copy.json"
+expect_error study_over_its_config "is the input" study "$scratch/config_copy.json" --out "$scratch/config_copy.json"
+if ! cmp -s "$fixtures/good_link.json" "$scratch/config_copy.json"; then
+  echo "study_over_its_config: the input was changed"; check study_input_kept 1
+fi
 expect_error missing_file "no_such_file.json: cannot open" link "$fixtures/no_such_file.json" --rule FullGauss
 expect_error unknown_rule "unknown rule 'NoSuchRule'; valid rules: FullGauss" link "$fixtures/good_link.json" --rule NoSuchRule
 expect_error bad_gauss_form "expected Gauss:RsxRtxSuxSv" link "$fixtures/good_link.json" --rule Gauss:3x3

@@ -24,6 +24,15 @@ expect_status 2 "no patches" "no patches" solve "$work/empty.json"
 expect_status 2 "no such scene" "not a built-in scene" solve "$work/missing.json"
 expect_status 2 "degree out of range" "--degree" solve cornell --degree 4
 expect_status 2 "unknown rule choice" "--rules" solve cornell --rules magic
+expect_status 2 "no iterations" "--max-iterations" solve cornell --max-iterations 0
+expect_status 2 "negative threads" "--threads" solve cornell --threads -1
+printf '{"patches": [{%s, "reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}]}' "$square" >"$work/lamp.json"
+cp "$work/lamp.json" "$work/lamp_copy.json"
+expect_status 2 "render over the scene" "is the input" solve "$work/lamp_copy.json" --render "$work/lamp_copy.json"
+if ! cmp -s "$work/lamp.json" "$work/lamp_copy.json"; then
+  echo "FAIL: --render over the scene changed the scene"; failures=$((failures + 1))
+fi
+expect_status 2 "render into a missing folder" "does not exist" solve cornell --render "$work/no/such/folder.png"
 
 expect_status 0 "built-in scene with a render" "" solve cornell --degree 0 --render "$work/cornell.png"
 for field in kernel_evaluations links elements iterations elapsed_seconds patches mean_radiosity; do
