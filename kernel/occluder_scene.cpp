@@ -90,9 +90,8 @@ OccluderScene::~OccluderScene() {
   if (scene_) rtcReleaseScene(scene_);
 }
 
-unsigned OccluderScene::addParallelogram(const Patch& patch) {
-  assert(!committed_);
-  RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_QUAD);
+RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch) {
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
   const Eigen::Vector3d corners[4] = {patch.origin, patch.origin + patch.edgeU,
@@ -105,6 +104,12 @@ unsigned OccluderScene::addParallelogram(const Patch& patch) {
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
   for (unsigned c = 0; c < 4; ++c) indices[c] = c;
   rtcCommitGeometry(geometry);
+  return geometry;
+}
+
+unsigned OccluderScene::addParallelogram(const Patch& patch) {
+  assert(!committed_);
+  RTCGeometry geometry = newParallelogramGeometry(embreeDevice(), patch);
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);
   ++geometryCount_;

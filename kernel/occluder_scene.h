@@ -101,4 +101,8 @@ class OccluderScene {
 // The process-wide Embree device (created on first use).
 RTCDevice embreeDevice();
 
+// A committed Embree quad geometry of one parallelogram (corners o, o+a, o+a+b, o+b in float),
+// not yet attached to a scene: the one way patches become Embree geometry.
+RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch);
+
 }  // namespace radquad

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "kernel/occluder_scene.h"  // embreeDevice() only
+#include "kernel/occluder_scene.h"  // embreeDevice() and newParallelogramGeometry() only
 
 namespace radquad {
 namespace {
@@ -66,19 +66,7 @@ TraceScene::TraceScene(const Scene& scene) {
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   for (std::size_t k = 0; k < scene.patches.size(); ++k) {
     const Patch& patch = scene.patches[k].patch;
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-    const Eigen::Vector3d corners[4] = {patch.origin, patch.origin + patch.edgeU,
-                                        patch.origin + patch.edgeU + patch.edgeV,
-                                        patch.origin + patch.edgeV};
-    for (int c = 0; c < 4; ++c) {
-      for (int axis = 0; axis < 3; ++axis) vertices[3 * c + axis] = float(corners[c][axis]);
-    }
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
-    for (unsigned c = 0; c < 4; ++c) indices[c] = c;
-    rtcCommitGeometry(geometry);
+    RTCGeometry geometry = newParallelogramGeometry(device, patch);
     rtcAttachGeometryByID(scene_, geometry, unsigned(k));
     rtcReleaseGeometry(geometry);
   }

@@ -5,6 +5,14 @@
 
 namespace radquad::testing {
 
+// A scene patch with a grey reflectance `rho` and emission `emission` on every channel.
+inline ScenePatch scenePatch(const std::string& name, const Eigen::Vector3d& origin,
+                             const Eigen::Vector3d& edgeU, const Eigen::Vector3d& edgeV,
+                             double rho, double emission = 0.0) {
+  return ScenePatch{name, Patch::make(origin, edgeU, edgeV, name), Eigen::Vector3d::Constant(rho),
+                    Eigen::Vector3d::Constant(emission)};
+}
+
 // The unit cube seen from inside, every face emitting `emission` with reflectance `rho`:
 // the white furnace, whose exact radiosity is emission / (1 - rho) everywhere.
 Scene furnaceScene(double emission, double rho);

@@ -7,16 +7,14 @@
 
 #include "radiosity/path_tracer.h"
 #include "radiosity/solver.h"
+#include "tests/radiosity/scenes_for_tests.h"
 
 namespace radquad {
 namespace {
 
 using Vec = Eigen::Vector3d;
 
-ScenePatch scenePatch(const std::string& name, const Vec& o, const Vec& a, const Vec& b,
-                      double rho, double emission = 0.0) {
-  return ScenePatch{name, Patch::make(o, a, b, name), Vec::Constant(rho), Vec::Constant(emission)};
-}
+using testing::scenePatch;
 
 // Every patch's mean radiosity within `tolerance` (relative) plus three of the trace's
 // standard errors.

@@ -21,10 +21,7 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
-ScenePatch scenePatch(const std::string& name, const Vec& o, const Vec& a, const Vec& b,
-                      double rho, double emission = 0.0) {
-  return ScenePatch{name, Patch::make(o, a, b, name), Vec::Constant(rho), Vec::Constant(emission)};
-}
+using testing::scenePatch;
 
 // Two 2.0 x 0.05 strips meeting at a right angle along their long edge (x axis), facing each
 // other, under a 2 x 1 emitter facing down.
