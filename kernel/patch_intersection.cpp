@@ -119,4 +119,64 @@ std::optional<std::string> patchesInterpenetrate(const Patch& a, const Patch& b)
   return std::nullopt;
 }
 
+namespace {
+
+double pointToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+// Closest distance between segments [p0, p1] and [q0, q1] (Ericson, "Real-Time Collision
+// Detection", 5.1.9), with the parallel case falling back to endpoint distances.
+double segmentToSegment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                        const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r), c = d1.dot(r);
+  const double b = d1.dot(d2), denominator = a * e - b * b;
+  double best = std::min({pointToSegment(p0, q0, q1), pointToSegment(p1, q0, q1),
+                          pointToSegment(q0, p0, p1), pointToSegment(q1, p0, p1)});
+  if (denominator > 1e-12 * a * e) {
+    const double s = (b * f - c * e) / denominator, t = (a * f - b * c) / denominator;
+    if (s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0) {
+      best = std::min(best, (p0 + s * d1 - (q0 + t * d2)).norm());
+    }
+  }
+  return best;
+}
+
+double pointToPatch(const Eigen::Vector3d& point, const Patch& patch) {
+  const Eigen::Vector3d r = point - patch.origin;
+  const double aa = patch.edgeU.squaredNorm(), ab = patch.edgeU.dot(patch.edgeV);
+  const double bb = patch.edgeV.squaredNorm();
+  const double ar = patch.edgeU.dot(r), br = patch.edgeV.dot(r);
+  const double determinant = aa * bb - ab * ab;
+  const double u = (bb * ar - ab * br) / determinant, v = (aa * br - ab * ar) / determinant;
+  if (u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0) return std::abs(patch.normal.dot(r));
+  const Corners c = cornersOf(patch);
+  double best = INFINITY;
+  for (int k = 0; k < 4; ++k) best = std::min(best, pointToSegment(point, c[k], c[(k + 1) % 4]));
+  return best;
+}
+
+}  // namespace
+
+double patchDistance(const Patch& a, const Patch& b) {
+  if (patchesInterpenetrate(a, b)) return 0.0;
+  const Corners ca = cornersOf(a), cb = cornersOf(b);
+  double best = INFINITY;
+  for (int k = 0; k < 4; ++k) {
+    best = std::min({best, pointToPatch(ca[k], b), pointToPatch(cb[k], a)});
+    for (int j = 0; j < 4; ++j) {
+      best = std::min(best, segmentToSegment(ca[k], ca[(k + 1) % 4], cb[j], cb[(j + 1) % 4]));
+    }
+  }
+  return best;
+}
+
+double nearnessRatio(const Patch& a, const Patch& b) {
+  const Patch& smaller = a.area <= b.area ? a : b;
+  return patchDistance(a, b) / std::min(smaller.edgeU.norm(), smaller.edgeV.norm());
+}
+
 }  // namespace radquad

@@ -20,4 +20,16 @@ namespace radquad {
 // areas below 1e-9 of the patches' size are treated as touching.
 std::optional<std::string> patchesInterpenetrate(const Patch& a, const Patch& b);
 
+// The Euclidean distance between two parallelograms (0 when they touch or cross): the least
+// of the distances from each one's corners to the other and between their edges.
+double patchDistance(const Patch& a, const Patch& b);
+
+// A link is near-singular when its patches are closer than kNearSingularRatio times the
+// shorter side of the smaller one: the kernel 1/r^2 then varies over the link far faster than
+// any fixed product rule resolves (opposed unit squares 0.01 apart: FullGauss gives a form
+// factor of 394), and a rule's result there is not to be trusted.
+inline constexpr double kNearSingularRatio = 0.25;
+// distance / (shorter side of the patch with the smaller area).
+double nearnessRatio(const Patch& a, const Patch& b);
+
 }  // namespace radquad

@@ -12,6 +12,7 @@
 #include "experiments/json_input.h"
 #include "experiments/trace_report.h"
 #include "kernel/input_error.h"
+#include "kernel/patch_intersection.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
 
@@ -91,6 +92,26 @@ void runLink(LinkOptions options) {
       {"visible_fraction", integral.visibleFraction()},
       {"rays_cast", integral.raysCast},
   };
+  // Near-singular links and form factors outside [0, 1] are flagged, never printed as fine.
+  nlohmann::json warnings = nlohmann::json::array();
+  const double nearness = nearnessRatio(description.receiver, description.source);
+  if (nearness < kNearSingularRatio) {
+    warnings.push_back("near-singular link: the patches are " + std::to_string(nearness) +
+                       " of the smaller patch's shorter side apart (below " +
+                       std::to_string(kNearSingularRatio) +
+                       "); product rules converge slowly here and random rules' standard "
+                       "errors understate their error");
+  }
+  if (integral.formFactor > 1.0 + 1e-9 || integral.formFactor < -1e-9) {
+    warnings.push_back("form factor " + std::to_string(integral.formFactor) +
+                       " outside [0, 1]: the rule does not resolve this link");
+  }
+  if (!warnings.empty()) {
+    out["warnings"] = warnings;
+    for (const auto& warning : warnings) {
+      std::cerr << "radquad: warning: " << warning.get<std::string>() << "\n";
+    }
+  }
   if (options.trials > 1) {
     if (prepared.rule().isRandom()) {
       out.update(trialStatistics(prepared, sceneLink.link, options));

@@ -62,6 +62,20 @@ expect_error no_command "subcommand"
 expect_error figures_unwritable "cannot create the folder" figures --quick --quiet --results /proc/radquad-results
 expect_error adaptive_unwritable "cannot create the folder" adaptive --quiet --plots /proc/radquad-plots
 
+# A near-singular link (opposed unit squares 0.01 apart): FullGauss's form factor is far above
+# 1; the output says so in "warnings" and on stderr.
+"$radquad" link "$fixtures/near_singular.json" --rule FullGauss >"$scratch/near.json" 2>"$scratch/err"
+check near_singular_status $?
+grep -q "near-singular link" "$scratch/err"; check near_singular_stderr $?
+"$python" - "$scratch/near.json" <<'PY'
+import json, sys
+out = json.load(open(sys.argv[1]))
+assert out["form_factor"] > 1.0
+assert any("near-singular" in w for w in out["warnings"]), out.get("warnings")
+assert any("outside [0, 1]" in w for w in out["warnings"]), out.get("warnings")
+PY
+check near_singular_warnings $?
+
 # A good run: the documented keys, a 9x9 coupling at degree 2, half the rays blocked (the
 # fixture's blocker covers half of the mid plane; Gauss:4x4x3x3 is symmetric about it).
 "$radquad" link "$fixtures/good_link.json" --rule Gauss:4x4x3x3 --degree 2 >"$scratch/good.json" 2>"$scratch/err"

@@ -58,6 +58,22 @@ TEST(PatchIntersection, TouchingIsLegal) {
   EXPECT_FALSE(patchesInterpenetrate(floor, square({2, 0, -1}, {0, 1, 0}, {0, 0, 2})));
 }
 
+TEST(PatchDistance, ClosedFormsOfSimpleConfigurations) {
+  const Patch floor = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  // Parallel and opposed at 0.3; shifted sideways by 2 (closest: edge to edge, sqrt(1 + 0.09)).
+  EXPECT_NEAR(patchDistance(floor, square({0, 0, 0.3}, {0, 1, 0}, {1, 0, 0})), 0.3, 1e-12);
+  EXPECT_NEAR(patchDistance(floor, square({2, 0, 0.3}, {0, 1, 0}, {1, 0, 0})), std::sqrt(1.09),
+              1e-12);
+  // A wall standing 0.2 beyond the floor's edge x = 1, from z = 0.5 up: corner to edge.
+  EXPECT_NEAR(patchDistance(floor, square({1.2, 0, 0.5}, {0, 1, 0}, {0, 0, 1})),
+              std::sqrt(0.04 + 0.25), 1e-12);
+  // Touching along an edge, and crossing.
+  EXPECT_EQ(patchDistance(floor, square({0, 0, 0}, {0, 0, 1}, {1, 0, 0})), 0.0);
+  EXPECT_EQ(patchDistance(floor, square({0.5, 0, -1}, {0, 1, 0}, {0, 0, 2})), 0.0);
+  // Nearness is relative to the smaller patch's shorter side (0.5 x 0.25 here).
+  EXPECT_NEAR(nearnessRatio(floor, square({0, 0, 0.05}, {0, 0.25, 0}, {0.5, 0, 0})), 0.2, 1e-12);
+}
+
 TEST(CoincidentPoints, TheKernelIsZeroNotNaN) {
   const Patch p = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   EXPECT_EQ(unoccludedKernel(p, {0.5, 0.5, 0}, p, {0.5, 0.5, 0}), 0.0);
