@@ -1,4 +1,4 @@
-// The solver's state that its header keeps private (solver.cpp and the checks in
+// The solver's state that its header keeps private (solver.cpp, refinement.cpp and the checks in
 // form_factor_check.cpp share it): the occluder scene of every patch, the Gauss tables, the
 // visibility classifier, per-thread link integrators and the coupling store.
 #pragma once
