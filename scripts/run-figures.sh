@@ -4,7 +4,7 @@
 # plots/fig2.*) and the adaptive method's savings and Plate 1 (`radquad adaptive`:
 # results/adaptive.json, results/plate1.png, plots/adaptive.png), and the solver's accuracy
 # against the path tracer on the built-in scenes (scripts/solver_accuracy.py:
-# results/solver_accuracy.json). About 10 minutes on 2 cores once built.
+# results/solver_accuracy.json). About 6 minutes on 2 cores once built.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/build.sh" release
