@@ -19,6 +19,7 @@
 #include "experiments/commands/commands.h"
 #include "experiments/study/study_output.h"
 #include "kernel/input_error.h"
+#include "radiosity/scene.h"
 
 namespace radquad {
 namespace {
@@ -37,6 +38,17 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
   if (!(command.runs.sweepBfEpsilon > 0.0)) throw InputError("--sweep-bf-eps: must be > 0");
   for (double t : command.runs.sweepThresholds) {
     if (!(t >= 0.0)) throw InputError("--sweep: thresholds must be >= 0");
+  }
+  // Every scene is checked before the first solve (a bad --sweep-scene used to fail only
+  // after the table's solves); the parser checks the degrees.
+  for (const std::string& scene : command.runs.scenes) {
+    if (!builtinScene(scene)) {
+      throw InputError("--scenes " + scene + ": not a built-in scene (cornell, slats)");
+    }
+  }
+  if (!builtinScene(command.runs.sweepScene)) {
+    throw InputError("--sweep-scene " + command.runs.sweepScene +
+                     ": not a built-in scene (cornell, slats)");
   }
   std::optional<tbb::global_control> threadLimit;
   if (command.threads > 0) {

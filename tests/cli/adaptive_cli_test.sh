@@ -41,6 +41,10 @@ done
 # `radquad adaptive` on a tiny table with two timing repeats: every run listed, the fastest
 # reported, the ratios from the fastest; a repeat count of 0 is refused.
 expect_status 2 "no timing repeats" "--timing-repeats" adaptive --timing-repeats 0
+expect_status 2 "unknown sweep scene, before any solve" "--sweep-scene foo" adaptive --sweep-scene foo --quiet --results "$work/results" --plots "$work/plots"
+if [[ -e "$work/results/adaptive.json" ]]; then
+  echo "FAIL: a rejected adaptive run wrote results"; failures=$((failures + 1))
+fi
 mkdir -p "$work/adaptive"
 expect_status 0 "adaptive, two timing repeats" "" adaptive --scenes cornell --degrees 1 \
   --bf-eps 1 --sweep 1 --sweep-bf-eps 1 --sweep-degree 1 --timing-repeats 2 \
