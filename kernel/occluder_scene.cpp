@@ -94,9 +94,7 @@ RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch) {
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-  const Eigen::Vector3d corners[4] = {patch.origin, patch.origin + patch.edgeU,
-                                      patch.origin + patch.edgeU + patch.edgeV,
-                                      patch.origin + patch.edgeV};
+  const std::array<Eigen::Vector3d, 4> corners = patch.corners();
   for (int c = 0; c < 4; ++c) {
     for (int axis = 0; axis < 3; ++axis) vertices[3 * c + axis] = float(corners[c][axis]);
   }

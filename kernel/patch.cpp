@@ -43,6 +43,14 @@ Patch Patch::make(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
   return patch;
 }
 
+Eigen::Vector2d Patch::parametersOf(const Eigen::Vector3d& point) const {
+  const Eigen::Vector3d r = point - origin;
+  const double aa = edgeU.squaredNorm(), ab = edgeU.dot(edgeV), bb = edgeV.squaredNorm();
+  const double ar = edgeU.dot(r), br = edgeV.dot(r);
+  const double determinant = aa * bb - ab * ab;
+  return {(bb * ar - ab * br) / determinant, (aa * br - ab * ar) / determinant};
+}
+
 std::string Patch::toString() const {
   return "Patch{origin " + formatVector(origin) + ", edge_u " + formatVector(edgeU) + ", edge_v " +
          formatVector(edgeV) + "}";

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <string>
 
 namespace radquad {
@@ -25,6 +26,13 @@ struct Patch {
 
   Eigen::Vector3d pointAt(double u, double v) const { return origin + u * edgeU + v * edgeV; }
   Eigen::Vector3d centre() const { return pointAt(0.5, 0.5); }
+  // The corners o, o + a, o + a + b, o + b: counter-clockwise about the normal.
+  std::array<Eigen::Vector3d, 4> corners() const {
+    return {origin, origin + edgeU, origin + edgeU + edgeV, origin + edgeV};
+  }
+  // (u, v) of the point's projection onto the patch's plane: the least-squares solution of
+  // u edgeU + v edgeV = point - origin (outside [0, 1]^2 beyond the edges).
+  Eigen::Vector2d parametersOf(const Eigen::Vector3d& point) const;
 
   std::string toString() const;
 };

@@ -11,10 +11,6 @@ namespace {
 
 using Corners = std::array<Eigen::Vector3d, 4>;
 
-Corners cornersOf(const Patch& p) {
-  return {p.origin, p.origin + p.edgeU, p.origin + p.edgeU + p.edgeV, p.origin + p.edgeV};
-}
-
 // The part of the line {point + t direction} inside the convex polygon `corners` (in its
 // plane, which the line is assumed to lie in), as a parameter interval [t0, t1]; empty when
 // t0 > t1. Each edge's inward half-plane cuts the interval.
@@ -72,7 +68,7 @@ std::string format(double value) {
 }  // namespace
 
 std::optional<std::string> patchesInterpenetrate(const Patch& a, const Patch& b) {
-  const Corners ca = cornersOf(a), cb = cornersOf(b);
+  const Corners ca = a.corners(), cb = b.corners();
   const double size = std::max({a.edgeU.norm(), a.edgeV.norm(), b.edgeU.norm(), b.edgeV.norm()});
   const double tolerance = 1e-9 * size;
   // Signed distances of each patch's corners to the other's plane.
@@ -146,14 +142,11 @@ double segmentToSegment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
 }
 
 double pointToPatch(const Eigen::Vector3d& point, const Patch& patch) {
-  const Eigen::Vector3d r = point - patch.origin;
-  const double aa = patch.edgeU.squaredNorm(), ab = patch.edgeU.dot(patch.edgeV);
-  const double bb = patch.edgeV.squaredNorm();
-  const double ar = patch.edgeU.dot(r), br = patch.edgeV.dot(r);
-  const double determinant = aa * bb - ab * ab;
-  const double u = (bb * ar - ab * br) / determinant, v = (aa * br - ab * ar) / determinant;
-  if (u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0) return std::abs(patch.normal.dot(r));
-  const Corners c = cornersOf(patch);
+  const Eigen::Vector2d uv = patch.parametersOf(point);
+  if (uv.x() >= 0.0 && uv.x() <= 1.0 && uv.y() >= 0.0 && uv.y() <= 1.0) {
+    return std::abs(patch.normal.dot(point - patch.origin));
+  }
+  const Corners c = patch.corners();
   double best = INFINITY;
   for (int k = 0; k < 4; ++k) best = std::min(best, pointToSegment(point, c[k], c[(k + 1) % 4]));
   return best;
@@ -163,7 +156,7 @@ double pointToPatch(const Eigen::Vector3d& point, const Patch& patch) {
 
 double patchDistance(const Patch& a, const Patch& b) {
   if (patchesInterpenetrate(a, b)) return 0.0;
-  const Corners ca = cornersOf(a), cb = cornersOf(b);
+  const Corners ca = a.corners(), cb = b.corners();
   double best = INFINITY;
   for (int k = 0; k < 4; ++k) {
     best = std::min({best, pointToPatch(ca[k], b), pointToPatch(cb[k], a)});

@@ -10,14 +10,10 @@ namespace radquad {
 namespace {
 
 bool pointOnPatch(const Eigen::Vector3d& point, const Patch& patch, double tolerance) {
-  const Eigen::Vector3d r = point - patch.origin;
-  if (std::abs(patch.normal.dot(r)) > tolerance) return false;
-  const double aa = patch.edgeU.squaredNorm(), ab = patch.edgeU.dot(patch.edgeV);
-  const double bb = patch.edgeV.squaredNorm();
-  const double ar = patch.edgeU.dot(r), br = patch.edgeV.dot(r);
-  const double determinant = aa * bb - ab * ab;
-  const double u = (bb * ar - ab * br) / determinant, v = (aa * br - ab * ar) / determinant;
-  const double slackU = tolerance / std::sqrt(aa), slackV = tolerance / std::sqrt(bb);
+  if (std::abs(patch.normal.dot(point - patch.origin)) > tolerance) return false;
+  const Eigen::Vector2d uv = patch.parametersOf(point);
+  const double u = uv.x(), v = uv.y();
+  const double slackU = tolerance / patch.edgeU.norm(), slackV = tolerance / patch.edgeV.norm();
   return u >= -slackU && u <= 1.0 + slackU && v >= -slackV && v <= 1.0 + slackV;
 }
 
@@ -70,10 +66,7 @@ bool elementsTouch(const Patch& a, const Patch& b) {
   const double tolerance = 1e-9 * std::sqrt(std::max(a.area, b.area));
   for (const Patch* one : {&a, &b}) {
     const Patch& other = one == &a ? b : a;
-    const Eigen::Vector3d corners[4] = {one->origin, one->origin + one->edgeU,
-                                        one->origin + one->edgeU + one->edgeV,
-                                        one->origin + one->edgeV};
-    for (const Eigen::Vector3d& corner : corners) {
+    for (const Eigen::Vector3d& corner : one->corners()) {
       if (pointOnPatch(corner, other, tolerance)) return true;
     }
   }

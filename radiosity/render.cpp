@@ -26,13 +26,9 @@ std::unique_ptr<OccluderScene> primaryScene(const Scene& scene) {
 // (u, v) of a point of the patch's plane: the least-squares solution of
 // u edgeU + v edgeV = point - origin, clamped to the unit square.
 void patchCoordinates(const Patch& patch, const Eigen::Vector3d& point, double& u, double& v) {
-  const Eigen::Vector3d r = point - patch.origin;
-  const double aa = patch.edgeU.dot(patch.edgeU), ab = patch.edgeU.dot(patch.edgeV);
-  const double bb = patch.edgeV.dot(patch.edgeV);
-  const double ar = patch.edgeU.dot(r), br = patch.edgeV.dot(r);
-  const double determinant = aa * bb - ab * ab;
-  u = std::clamp((bb * ar - ab * br) / determinant, 0.0, 1.0);
-  v = std::clamp((aa * br - ab * ar) / determinant, 0.0, 1.0);
+  const Eigen::Vector2d uv = patch.parametersOf(point);
+  u = std::clamp(uv.x(), 0.0, 1.0);
+  v = std::clamp(uv.y(), 0.0, 1.0);
 }
 
 void appendBytes(void* context, void* data, int size) {

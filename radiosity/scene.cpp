@@ -57,9 +57,7 @@ Camera defaultCamera(const Scene& scene) {
   Eigen::Vector3d high = -low;
   for (const ScenePatch& item : scene.patches) {
     const Patch& p = item.patch;
-    for (const Eigen::Vector3d& corner :
-         {p.origin, Eigen::Vector3d(p.origin + p.edgeU), Eigen::Vector3d(p.origin + p.edgeV),
-          Eigen::Vector3d(p.origin + p.edgeU + p.edgeV)}) {
+    for (const Eigen::Vector3d& corner : p.corners()) {
       low = low.cwiseMin(corner);
       high = high.cwiseMax(corner);
     }

@@ -10,10 +10,6 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 
-std::array<Vec, 4> corners(const Patch& patch) {
-  return {patch.origin, patch.origin + patch.edgeU, patch.origin + patch.edgeU + patch.edgeV,
-          patch.origin + patch.edgeV};
-}
 
 }  // namespace
 
@@ -35,10 +31,10 @@ bool mayExchange(const Patch& receiver, const Patch& source) {
   const double scale = std::sqrt(std::max(receiver.area, source.area));
   const double margin = 1e-9 * scale;
   bool sourceInFront = false, receiverInFront = false;
-  for (const Vec& point : corners(source)) {
+  for (const Vec& point : source.corners()) {
     sourceInFront = sourceInFront || receiver.normal.dot(point - receiver.origin) > margin;
   }
-  for (const Vec& point : corners(receiver)) {
+  for (const Vec& point : receiver.corners()) {
     receiverInFront = receiverInFront || source.normal.dot(point - source.origin) > margin;
   }
   return sourceInFront && receiverInFront;
@@ -47,7 +43,7 @@ bool mayExchange(const Patch& receiver, const Patch& source) {
 bool straddlesPlane(const Patch& plane, const Patch& element) {
   const double margin = 1e-9 * std::sqrt(std::max(plane.area, element.area));
   bool front = false, back = false;
-  for (const Vec& point : corners(element)) {
+  for (const Vec& point : element.corners()) {
     const double height = plane.normal.dot(point - plane.origin);
     front = front || height > margin;
     back = back || height < -margin;
@@ -60,7 +56,7 @@ bool cutByTangentPlane(const Patch& receiver, const Patch& source) {
 }
 
 bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& source) {
-  const std::array<Vec, 4> rc = corners(receiver), sc = corners(source);
+  const std::array<Vec, 4> rc = receiver.corners(), sc = source.corners();
   const double size = std::sqrt(std::max({occluder.area, receiver.area, source.area}));
   const double margin = 1e-9 * size;
   std::array<double, 4> hr, hs;
@@ -76,17 +72,13 @@ bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& sour
   }
   // Inside the parallelogram: the crossing point's coordinates along its edges in [0, 1],
   // kept away from the border by the margin.
-  const Vec& a = occluder.edgeU;
-  const Vec& b = occluder.edgeV;
-  const double aa = a.squaredNorm(), ab = a.dot(b), bb = b.squaredNorm();
-  const double determinant = aa * bb - ab * ab;
-  const double slackU = margin / std::sqrt(aa), slackV = margin / std::sqrt(bb);
+  const double slackU = margin / occluder.edgeU.norm(), slackV = margin / occluder.edgeV.norm();
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
       const double t = hr[std::size_t(i)] / (hr[std::size_t(i)] - hs[std::size_t(j)]);
-      const Vec p = rc[std::size_t(i)] + t * (sc[std::size_t(j)] - rc[std::size_t(i)]) - occluder.origin;
-      const double pa = a.dot(p), pb = b.dot(p);
-      const double u = (bb * pa - ab * pb) / determinant, v = (aa * pb - ab * pa) / determinant;
+      const Eigen::Vector2d uv = occluder.parametersOf(
+          rc[std::size_t(i)] + t * (sc[std::size_t(j)] - rc[std::size_t(i)]));
+      const double u = uv.x(), v = uv.y();
       if (!(u > slackU && u < 1.0 - slackU && v > slackV && v < 1.0 - slackV)) return false;
     }
   }
@@ -129,7 +121,7 @@ struct VisibilityClassifier::Shaft {
   std::array<double, 64> offsets;
 
   Shaft(const Patch& r, const Patch& s) : receiver(&r), source(&s) {
-    const std::array<Vec, 4> rc = corners(r), sc = corners(s);
+    const std::array<Vec, 4> rc = r.corners(), sc = s.corners();
     const std::array<Vec, 8> hull = {rc[0], rc[1], rc[2], rc[3], sc[0], sc[1], sc[2], sc[3]};
     low = hull[0];
     high = hull[0];
@@ -168,7 +160,7 @@ struct VisibilityClassifier::Shaft {
 };
 
 bool VisibilityClassifier::separated(const Shaft& shaft, int patch) const {
-  const std::array<Vec, 4> occluder = corners(scene_.patches[std::size_t(patch)].patch);
+  const std::array<Vec, 4> occluder = scene_.patches[std::size_t(patch)].patch.corners();
   const double tolerance = shaft.tolerance;
   // Bounding boxes.
   Vec occluderLow = occluder[0], occluderHigh = occluder[0];
