@@ -112,6 +112,8 @@ unsigned OccluderScene::addParallelogram(const Patch& patch) {
   rtcReleaseGeometry(geometry);
   ++geometryCount_;
   ++primitiveCount_;
+  const std::array<Eigen::Vector3d, 4> corners = patch.corners();
+  polygons_.emplace_back(corners.begin(), corners.end());
   return id;
 }
 
@@ -144,6 +146,9 @@ unsigned OccluderScene::addTriangleMesh(
   rtcReleaseGeometry(geometry);
   ++geometryCount_;
   primitiveCount_ += triangles.size();
+  for (const auto& triangle : triangles) {
+    polygons_.push_back({vertices[triangle[0]], vertices[triangle[1]], vertices[triangle[2]]});
+  }
   return id;
 }
 

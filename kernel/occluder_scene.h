@@ -78,6 +78,10 @@ class OccluderScene {
   bool empty() const { return geometryCount_ == 0; }
   std::size_t geometryCount() const { return geometryCount_; }
   std::size_t primitiveCount() const { return primitiveCount_; }
+  // Every primitive added so far as a convex polygon in double precision (a parallelogram's
+  // four corners, a triangle's three), in the order added: the geometry that exact
+  // visibility (reference/exact_visibility.h) projects, beside the float copy Embree traces.
+  const std::vector<std::vector<Eigen::Vector3d>>& polygons() const { return polygons_; }
   RTCScene handle() const { return scene_; }
 
   // Traces every segment of the batch in place (rtcOccluded16 on its packets); afterwards
@@ -96,6 +100,7 @@ class OccluderScene {
   std::size_t geometryCount_ = 0;
   std::size_t primitiveCount_ = 0;
   bool committed_ = false;
+  std::vector<std::vector<Eigen::Vector3d>> polygons_;
 };
 
 // The process-wide Embree device (created on first use).

@@ -8,6 +8,9 @@
 #include "quadrature/gauss_legendre.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/rules/gauss_product.h"
+#include "kernel/input_error.h"
+#include "reference/exact_gold.h"
+#include "reference/exact_visibility.h"
 #include "reference/point_polygon_form_factor.h"
 #include "reference/stratified_reference.h"
 
@@ -69,6 +72,16 @@ Eigen::VectorXd lambertColumnAtOrder(const Link& link, int degree, int n) {
 
 }  // namespace
 
+const char* goldMethodName(GoldMethod method) {
+  return method == GoldMethod::exact ? "exact" : "stratified";
+}
+
+GoldMethod parseGoldMethod(const std::string& name, const std::string& what) {
+  if (name == "exact") return GoldMethod::exact;
+  if (name == "stratified") return GoldMethod::stratified;
+  throw InputError(what + ": unknown gold method '" + name + "' (exact or stratified)");
+}
+
 LambertCheck lambertColumn(const Link& link, int degree, double tolerance) {
   LambertCheck check;
   Eigen::VectorXd previous;
@@ -90,11 +103,33 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
                             const GoldOptions& options) {
   validateBasisDegree(degree);
   GoldReference gold;
-  if (gaussGold(link, degree, options.tolerance, gold)) {
+  const bool unoccluded = gaussGold(link, degree, options.tolerance, gold);
+  if (unoccluded && gold.converged) {
     gold.method = "gauss product";
     LambertCheck check = lambertColumn(link, degree, options.tolerance);
     check.maxDifference = (check.column - gold.coupling.col(0)).cwiseAbs().maxCoeff();
     gold.lambert = std::move(check);
+    return gold;
+  }
+  if (options.method == GoldMethod::exact &&
+      ExactVisibility(link).candidateCount() <= options.maxExactOccluders) {
+    ExactGoldOptions exactOptions;
+    exactOptions.tolerance = options.exactTolerance;
+    exactOptions.maxEvaluations = options.maxEvaluations;
+    const ExactGold exact = exactGold(link, degree, exactOptions);
+    gold = GoldReference{};
+    gold.method = "exact visibility";
+    gold.coupling = exact.coupling;
+    gold.couplingError = exact.couplingError;
+    gold.formFactor = exact.formFactor;
+    gold.formFactorError = exact.formFactorError;
+    gold.converged = exact.converged;
+    gold.receiverPoints = exact.receiverPoints;
+    gold.shaftOccluders = exact.candidateOccluders;
+    return gold;
+  }
+  if (unoccluded) {
+    gold.method = "gauss product";  // not converged: reported as such
     return gold;
   }
   gold = GoldReference{};

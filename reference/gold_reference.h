@@ -1,28 +1,37 @@
 // Gold references: much more accurate than the paper's reference, to measure how far the
-// paper's 10,000-sample reference itself is off (DESIGN.md, "The study").
+// paper's 10,000-sample reference itself, and every rule, is off (docs/design.md, "The gold").
 //
 // - Unoccluded links (no occluders, or none of the Gauss rays blocked): the Gauss-Legendre
 //   product with n points on every axis for n = 4, 8, 12, 16, 24, 32, 48, until two successive
 //   orders agree to `tolerance` times the largest |K| entry; the error reported is the
 //   entrywise difference of the last two orders (a bound on the coarser one, so
 //   conservative for the finer one returned).
-// - Occluded links: the mean of `denseReplicates` independent draws of Stratified:k with
-//   k = `denseStrata` (default 16 x 24^4 = 5.3 million samples, 530 times the reference),
-//   with the standard error of that mean.
+// - Occluded links, and unoccluded ones whose Gauss sequence does not converge (touching
+//   patches, a source crossing the receiver's plane), with method = exact (the default): the
+//   exact-visibility gold (exact_gold.h), deterministic, to `exactTolerance` of the largest
+//   |K| entry, when the link's shaft holds at most `maxExactOccluders` occluder polygons;
+//   otherwise, or with method = stratified, the mean of `denseReplicates` independent draws
+//   of Stratified:k with k = `denseStrata` (default 16 x 24^4 = 5.3 million samples) with the
+//   standard error of that mean.
 // - Constant source functions on unoccluded links: an independent check of column b = 0,
 //   K[a][0] = sqrt(A_r/A_s) int_{[0,1]^2} phi_a(s,t) F(x(s,t) -> source) ds dt, with the
 //   inner integral by Lambert's contour formula (point_polygon_form_factor.h) and the outer
 //   one by Gauss products of rising order.
 //
 // Options (GoldOptions):
-// | field           | default | meaning                                                    |
-// |-----------------|---------|------------------------------------------------------------|
-// | tolerance       | 1e-9    | agreement of two Gauss orders, relative to max |K|         |
-// | denseStrata     | 24      | k of the dense Stratified:k for occluded links             |
-// | denseReplicates | 16      | independent dense draws averaged                           |
+// | field             | default | meaning                                                  |
+// |-------------------|---------|----------------------------------------------------------|
+// | method            | exact   | occluded links: exact visibility or dense stratified     |
+// | tolerance         | 1e-9    | agreement of two Gauss orders, relative to max |K|       |
+// | exactTolerance    | 1e-7    | estimated error of the exact gold, relative to max |K|   |
+// | maxEvaluations    | 2000000 | receiver points of the exact gold (then not converged)   |
+// | maxExactOccluders | 64      | more occluder polygons in the shaft: dense stratified    |
+// | denseStrata       | 24      | k of the dense Stratified:k                              |
+// | denseReplicates   | 16      | independent dense draws averaged                         |
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -31,8 +40,18 @@
 
 namespace radquad {
 
+enum class GoldMethod { exact, stratified };
+
+const char* goldMethodName(GoldMethod method);
+// "exact" or "stratified"; throws InputError naming `what` otherwise.
+GoldMethod parseGoldMethod(const std::string& name, const std::string& what);
+
 struct GoldOptions {
+  GoldMethod method = GoldMethod::exact;
   double tolerance = 1e-9;
+  double exactTolerance = 1e-7;
+  std::size_t maxEvaluations = 2000000;
+  std::size_t maxExactOccluders = 64;
   int denseStrata = 24;
   int denseReplicates = 16;
 };
@@ -46,15 +65,20 @@ struct LambertCheck {
 };
 
 struct GoldReference {
-  std::string method;  // "gauss product" or "dense stratified"
+  std::string method;  // "gauss product", "exact visibility" or "dense stratified"
   Eigen::MatrixXd coupling;
   double formFactor = 0.0;
-  // Gauss: |K_n - K_previous| entrywise; dense stratified: the standard error of the mean.
+  // Gauss: |K_n - K_previous| entrywise; exact visibility: the cubature's error estimate;
+  // dense stratified: the standard error of the mean.
   Eigen::MatrixXd couplingError;
   double formFactorError = 0.0;
-  bool converged = false;  // Gauss orders agreed (always true for dense stratified)
-  int gaussPoints = 0;     // per axis, Gauss only
-  std::uint64_t kernelEvaluations = 0;
+  // Gauss orders agreed, or the exact gold met its tolerance (always true for dense
+  // stratified, whose error is statistical).
+  bool converged = false;
+  int gaussPoints = 0;  // per axis, Gauss only
+  std::uint64_t kernelEvaluations = 0;  // Gauss and dense stratified
+  std::uint64_t receiverPoints = 0;     // exact visibility: inner integrals taken
+  std::size_t shaftOccluders = 0;       // exact visibility: occluder polygons in the shaft
   std::optional<LambertCheck> lambert;
 };
 

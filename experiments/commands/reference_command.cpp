@@ -1,12 +1,14 @@
-// `radquad reference LINK.json [--degree D] [--seed S] [--replicates R] [--gold]`: the paper's
+// `radquad reference LINK.json [--degree D] [--seed S] [--replicates R] [--gold
+// [--gold-method exact|stratified] [--gold-tolerance T]]`: the paper's
 // 10,000-sample stratified reference of one link with its standard error, and optionally a
 // gold reference to measure how far it is off; prints one JSON object on stdout.
 //
 // Output keys: options echoed (link, degree, seed, replicates), `form_factor`, `coupling`,
 // `standard_error` = {`form_factor`, `coupling`} (reference/stratified_reference.h says how
 // it is estimated), `kernel_evaluations`, `visible_fraction`; with --gold, `gold` =
-// {method, form_factor, coupling, error = {form_factor, coupling}, converged, gauss_points,
-// kernel_evaluations, lambert_check} and `reference_minus_gold` = {form_factor,
+// {method, form_factor, coupling, error = {kind, form_factor, coupling}, converged,
+// kernel_evaluations, and gauss_points, tolerance, lambert_check (Gauss) or tolerance,
+// receiver_points, shaft_occluders (exact visibility)} and `reference_minus_gold` = {form_factor,
 // max_abs_coupling, form_factor_in_standard_errors}.
 #include <iostream>
 #include <memory>
@@ -28,23 +30,37 @@ struct ReferenceCommandOptions {
   std::uint64_t seed = 0;
   int replicates = ReferenceOptions{}.replicates;
   bool gold = false;
+  std::string goldMethod = "exact";
+  double goldTolerance = GoldOptions{}.exactTolerance;
 };
 
-nlohmann::json goldToJson(const GoldReference& gold) {
+const char* goldErrorKind(const std::string& method) {
+  if (method == "gauss product") return "difference of the last two Gauss orders";
+  if (method == "exact visibility") return "estimated absolute error of the adaptive cubature";
+  return "standard error of the mean";
+}
+
+nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options) {
   nlohmann::json out = {
       {"method", gold.method},
       {"form_factor", gold.formFactor},
       {"coupling", matrixToJson(gold.coupling)},
       {"error",
-       {{"kind", gold.method == "gauss product" ? "difference of the last two Gauss orders"
-                                                : "standard error of the mean"},
+       {{"kind", goldErrorKind(gold.method)},
         {"form_factor", gold.formFactorError},
         {"coupling", matrixToJson(gold.couplingError)}}},
       {"converged", gold.converged},
       {"kernel_evaluations", gold.kernelEvaluations},
-      {"tolerance", GoldOptions{}.tolerance},
   };
-  if (gold.method == "gauss product") out["gauss_points"] = gold.gaussPoints;
+  if (gold.method == "gauss product") {
+    out["gauss_points"] = gold.gaussPoints;
+    out["tolerance"] = options.tolerance;
+  }
+  if (gold.method == "exact visibility") {
+    out["tolerance"] = options.exactTolerance;
+    out["receiver_points"] = gold.receiverPoints;
+    out["shaft_occluders"] = gold.shaftOccluders;
+  }
   if (gold.lambert) {
     const LambertCheck& check = *gold.lambert;
     nlohmann::json column = nlohmann::json::array();
@@ -61,6 +77,9 @@ nlohmann::json goldToJson(const GoldReference& gold) {
 
 void runReference(ReferenceCommandOptions options) {
   options.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
+  GoldOptions goldOptions;
+  goldOptions.method = parseGoldMethod(options.goldMethod, "--gold-method");
+  goldOptions.exactTolerance = options.goldTolerance;
   const LinkDescription description = readLinkFile(options.linkPath);
   const SceneLink sceneLink = buildSceneLink(description);
   ReferenceOptions referenceOptions;
@@ -84,8 +103,9 @@ void runReference(ReferenceCommandOptions options) {
       {"visible_fraction", estimate.integral.visibleFraction()},
   };
   if (options.gold) {
-    const GoldReference gold = goldReference(sceneLink.link, options.degree, options.seed);
-    out["gold"] = goldToJson(gold);
+    const GoldReference gold =
+        goldReference(sceneLink.link, options.degree, options.seed, goldOptions);
+    out["gold"] = goldToJson(gold, goldOptions);
     const double difference = estimate.integral.formFactor - gold.formFactor;
     out["reference_minus_gold"] = {
         {"form_factor", difference},
@@ -117,7 +137,19 @@ void addReferenceCommand(CLI::App& app) {
                    "Independent draws for the standard error (2..100000)")
       ->capture_default_str();
   command->add_flag("--gold", options->gold,
-                    "Also compute a gold reference (Gauss of rising order or dense stratified)");
+                    "Also compute a gold reference (Gauss of rising order, exact visibility or "
+                    "dense stratified)");
+  command
+      ->add_option("--gold-method", options->goldMethod,
+                   "Gold of occluded links: exact (exact visibility, deterministic) or stratified "
+                   "(dense stratified, for comparison)")
+      ->check(CLI::IsMember({"exact", "stratified"}))
+      ->capture_default_str();
+  command
+      ->add_option("--gold-tolerance", options->goldTolerance,
+                   "Exact gold: estimated error relative to the largest |K| entry, in (0, 1)")
+      ->check(CLI::Range(1e-15, 0.5))
+      ->capture_default_str();
   command->callback([options] { runReference(*options); });
 }
 

@@ -70,12 +70,27 @@ nlohmann::json referenceOptionsToJson(const ReferenceOptions& options) {
 }
 
 GoldOptions parseGoldOptions(const nlohmann::json& value, const std::string& where) {
-  checkKeys(value, where, {"tolerance", "dense_strata", "dense_replicates"}, {});
+  checkKeys(value, where,
+            {"method", "tolerance", "exact_tolerance", "max_evaluations", "max_exact_occluders",
+             "dense_strata", "dense_replicates"},
+            {});
   GoldOptions options;
-  if (value.contains("tolerance")) {
-    options.tolerance = finiteNumber(value["tolerance"], where + ": tolerance");
-    if (options.tolerance <= 0.0) throw InputError(where + ": tolerance must be positive");
+  if (value.contains("method")) {
+    if (!value["method"].is_string()) throw InputError(where + ": method must be a string");
+    options.method = parseGoldMethod(value["method"].get<std::string>(), where + ": method");
   }
+  for (const auto& [key, field] : {std::pair{"tolerance", &options.tolerance},
+                                   std::pair{"exact_tolerance", &options.exactTolerance}}) {
+    if (!value.contains(key)) continue;
+    *field = finiteNumber(value[key], where + ": " + key);
+    if (!(*field > 0.0 && *field < 1.0)) {
+      throw InputError(where + ": " + key + " must lie in (0, 1)");
+    }
+  }
+  options.maxEvaluations = std::size_t(
+      integerIn(value, "max_evaluations", where, 1000, 1000000000, int(options.maxEvaluations)));
+  options.maxExactOccluders = std::size_t(integerIn(value, "max_exact_occluders", where, 0,
+                                                    1000000, int(options.maxExactOccluders)));
   options.denseStrata = integerIn(value, "dense_strata", where, 1, 56, options.denseStrata);
   options.denseReplicates =
       integerIn(value, "dense_replicates", where, 2, 100000, options.denseReplicates);
@@ -83,7 +98,11 @@ GoldOptions parseGoldOptions(const nlohmann::json& value, const std::string& whe
 }
 
 nlohmann::json goldOptionsToJson(const GoldOptions& options) {
-  return {{"tolerance", options.tolerance},
+  return {{"method", goldMethodName(options.method)},
+          {"tolerance", options.tolerance},
+          {"exact_tolerance", options.exactTolerance},
+          {"max_evaluations", options.maxEvaluations},
+          {"max_exact_occluders", options.maxExactOccluders},
           {"dense_strata", options.denseStrata},
           {"dense_replicates", options.denseReplicates}};
 }

@@ -1,0 +1,263 @@
+#include "reference/exact_visibility.h"
+
+#include <polyclipping/clipper.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace radquad {
+namespace {
+
+// Clipper's integer grid on the source's unit square: 2^44 steps (a resolution of 6e-14).
+constexpr double kClipperScale = 17592186044416.0;
+// Points this close to the apex (relative to x's height over the source plane) are cut: a
+// polygon through x itself casts a shadow of zero area.
+constexpr double kApexMargin = 1e-12;
+
+}  // namespace
+
+void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
+                       double offset, std::vector<Eigen::Vector3d>& out) {
+  out.clear();
+  const std::size_t n = polygon.size();
+  if (n == 0) return;
+  double previousHeight = normal.dot(polygon[n - 1]) + offset;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& previous = polygon[(i + n - 1) % n];
+    const Eigen::Vector3d& current = polygon[i];
+    const double height = normal.dot(current) + offset;
+    if ((previousHeight >= 0.0) != (height >= 0.0)) {
+      out.push_back(previous + (previousHeight / (previousHeight - height)) * (current - previous));
+    }
+    if (height >= 0.0) out.push_back(current);
+    previousHeight = height;
+  }
+}
+
+std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Eigen::Vector3d>& points) {
+  double scale = 0.0;
+  for (const auto& p : points) scale = std::max(scale, p.cwiseAbs().maxCoeff());
+  const double tolerance = 1e-12 * std::max(scale, 1e-300);
+  std::vector<Eigen::Vector4d> planes;
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        Eigen::Vector3d normal = (points[j] - points[i]).cross(points[k] - points[i]);
+        const double length = normal.norm();
+        if (length <= 1e-12 * scale * scale) continue;
+        normal /= length;
+        double lowest = 0.0, highest = 0.0;
+        for (const auto& p : points) {
+          const double h = normal.dot(p - points[i]);
+          lowest = std::min(lowest, h);
+          highest = std::max(highest, h);
+        }
+        if (highest <= tolerance) {
+          planes.push_back({normal.x(), normal.y(), normal.z(), -normal.dot(points[i])});
+        } else if (lowest >= -tolerance) {
+          planes.push_back({-normal.x(), -normal.y(), -normal.z(), normal.dot(points[i])});
+        }
+      }
+    }
+  }
+  return planes;
+}
+
+bool convexRingsOverlap(const SourceRing& a, const SourceRing& b) {
+  // Separating axis theorem: disjoint (or touching along a boundary) iff some edge of one
+  // ring has the other entirely on its outer side.
+  auto separated = [](const SourceRing& p, const SourceRing& q) {
+    for (std::size_t i = 0, n = p.size(); i < n; ++i) {
+      const Eigen::Vector2d& from = p[i];
+      const Eigen::Vector2d edge = p[(i + 1) % n] - from;
+      bool allOutside = true;
+      for (const auto& point : q) {
+        const Eigen::Vector2d offset = point - from;
+        if (edge.x() * offset.y() - edge.y() * offset.x() > 0.0) {  // inside a ccw ring
+          allOutside = false;
+          break;
+        }
+      }
+      if (allOutside) return true;
+    }
+    return false;
+  };
+  return !separated(a, b) && !separated(b, a);
+}
+
+double ringArea(const SourceRing& ring) {
+  double twice = 0.0;
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+    const Eigen::Vector2d& a = ring[i];
+    const Eigen::Vector2d& b = ring[(i + 1) % n];
+    twice += a.x() * b.y() - a.y() * b.x();
+  }
+  return 0.5 * twice;
+}
+
+ExactVisibility::ExactVisibility(const Link& link) : link_(link) {
+  const Patch& source = link.source;
+  const double uu = source.edgeU.dot(source.edgeU), uv = source.edgeU.dot(source.edgeV),
+               vv = source.edgeV.dot(source.edgeV);
+  const double determinant = uu * vv - uv * uv;
+  dualU_ = (vv * source.edgeU - uv * source.edgeV) / determinant;
+  dualV_ = (uu * source.edgeV - uv * source.edgeU) / determinant;
+  if (!link.hasOccluders()) return;
+  std::vector<Eigen::Vector3d> corners;
+  for (const auto& c : link.receiver.corners()) corners.push_back(c);
+  for (const auto& c : link.source.corners()) corners.push_back(c);
+  double scale = 0.0;
+  for (const auto& c : corners) scale = std::max(scale, c.cwiseAbs().maxCoeff());
+  const std::vector<Eigen::Vector4d> planes = convexHullPlanes(corners);
+  const double tolerance = 1e-9 * scale;
+  for (const auto& polygon : link.occluders->polygons()) {
+    bool outside = false;
+    for (const auto& plane : planes) {
+      outside = true;
+      for (const auto& p : polygon) {
+        if (plane.head<3>().dot(p) + plane[3] <= tolerance) {
+          outside = false;
+          break;
+        }
+      }
+      if (outside) break;
+    }
+    if (!outside) candidates_.push_back(polygon);
+  }
+  statistics_.candidateOccluders = candidates_.size();
+}
+
+void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) {
+  out.clear();
+  const Patch& source = link_.source;
+  const Eigen::Vector3d& nr = link_.receiver.normal;
+  const double height = source.normal.dot(x - source.origin);
+  if (!(height > 0.0)) return;  // on or behind the one-sided source
+  // S': the source clipped to the half-space in front of x's tangent plane.
+  const auto corners = source.corners();
+  clipA_.assign(corners.begin(), corners.end());
+  clipConvexPolygon(clipA_, nr, -nr.dot(x), clipB_);
+  if (clipB_.size() < 3) return;
+  const std::vector<Eigen::Vector3d> front = clipB_;
+  SourceRing visible;
+  visible.reserve(front.size());
+  for (const auto& p : front) {
+    visible.push_back({(p - source.origin).dot(dualU_), (p - source.origin).dot(dualV_)});
+  }
+  if (!(ringArea(visible) > 0.0)) return;
+  out.rings.push_back(std::move(visible));
+  out.signs.push_back(1.0);
+  if (candidates_.empty()) return;
+
+  // The pyramid with apex x over S', as half-spaces normal . p + offset >= 0.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : front) centroid += p;
+  centroid /= double(front.size());
+  std::vector<Eigen::Vector4d> pyramid;
+  pyramid.reserve(front.size() + 2);
+  pyramid.push_back({source.normal.x(), source.normal.y(), source.normal.z(),
+                     -source.normal.dot(source.origin)});
+  const double apexCut = source.normal.dot(source.origin) + height * (1.0 - kApexMargin);
+  pyramid.push_back({-source.normal.x(), -source.normal.y(), -source.normal.z(), apexCut});
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    Eigen::Vector3d normal = (front[i] - x).cross(front[(i + 1) % front.size()] - x);
+    if (normal.squaredNorm() == 0.0) continue;
+    if (normal.dot(centroid - x) < 0.0) normal = -normal;
+    pyramid.push_back({normal.x(), normal.y(), normal.z(), -normal.dot(x)});
+  }
+
+  shadows_.clear();
+  shadowBounds_.clear();
+  for (const auto& polygon : candidates_) {
+    bool rejected = false;
+    for (const auto& plane : pyramid) {
+      bool allOutside = true;
+      for (const auto& p : polygon) {
+        if (plane.head<3>().dot(p) + plane[3] >= 0.0) {
+          allOutside = false;
+          break;
+        }
+      }
+      if (allOutside) {
+        rejected = true;
+        break;
+      }
+    }
+    if (rejected) continue;
+    clipA_ = polygon;
+    for (const auto& plane : pyramid) {
+      clipConvexPolygon(clipA_, plane.head<3>(), plane[3], clipB_);
+      std::swap(clipA_, clipB_);
+      if (clipA_.size() < 3) break;
+    }
+    if (clipA_.size() < 3) continue;
+    SourceRing shadow;
+    shadow.reserve(clipA_.size());
+    Eigen::Vector4d bounds(1e300, 1e300, -1e300, -1e300);
+    for (const auto& q : clipA_) {
+      const double depth = height - source.normal.dot(q - source.origin);  // > 0 inside
+      const Eigen::Vector3d y = x + (q - x) * (height / depth);
+      const Eigen::Vector2d uv((y - source.origin).dot(dualU_), (y - source.origin).dot(dualV_));
+      shadow.push_back(uv);
+      bounds = {std::min(bounds[0], uv.x()), std::min(bounds[1], uv.y()),
+                std::max(bounds[2], uv.x()), std::max(bounds[3], uv.y())};
+    }
+    const double area = ringArea(shadow);
+    if (area == 0.0 || !std::isfinite(area)) continue;
+    if (area < 0.0) std::reverse(shadow.begin(), shadow.end());
+    shadows_.push_back(std::move(shadow));
+    shadowBounds_.push_back(bounds);
+  }
+  if (shadows_.empty()) return;
+
+  bool overlapping = false;
+  for (std::size_t i = 0; i < shadows_.size() && !overlapping; ++i) {
+    for (std::size_t j = i + 1; j < shadows_.size(); ++j) {
+      const auto& a = shadowBounds_[i];
+      const auto& b = shadowBounds_[j];
+      if (a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3] &&
+          convexRingsOverlap(shadows_[i], shadows_[j])) {
+        overlapping = true;
+        break;
+      }
+    }
+  }
+  if (!overlapping) {
+    for (auto& shadow : shadows_) {
+      out.rings.push_back(std::move(shadow));
+      out.signs.push_back(-1.0);
+    }
+    return;
+  }
+  ++statistics_.unions;
+  ClipperLib::Paths paths(shadows_.size());
+  for (std::size_t i = 0; i < shadows_.size(); ++i) {
+    paths[i].reserve(shadows_[i].size());
+    for (const auto& p : shadows_[i]) {
+      paths[i].push_back({ClipperLib::cInt(std::llround(p.x() * kClipperScale)),
+                          ClipperLib::cInt(std::llround(p.y() * kClipperScale))});
+    }
+  }
+  ClipperLib::Clipper clipper;
+  clipper.AddPaths(paths, ClipperLib::ptSubject, true);
+  ClipperLib::Paths united;
+  clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  const std::size_t first = out.rings.size();
+  double total = 0.0;
+  for (const auto& path : united) {
+    if (path.size() < 3) continue;
+    SourceRing ring;
+    ring.reserve(path.size());
+    for (const auto& p : path) ring.push_back({double(p.X) / kClipperScale, double(p.Y) / kClipperScale});
+    total += ringArea(ring);
+    out.rings.push_back(std::move(ring));
+    out.signs.push_back(-1.0);
+  }
+  // Outer rings of the union must count positive, holes negative, in this file's convention.
+  if (total < 0.0) {
+    for (std::size_t r = first; r < out.rings.size(); ++r) out.signs[r] = 1.0;
+  }
+}
+
+}  // namespace radquad

@@ -1,0 +1,87 @@
+// Exact visibility of a source patch from a receiver point, as polygons (docs/design.md,
+// "The exact gold").
+//
+// From a point x with unit normal n_r, the part of the source S that x sees and that faces
+// it is
+//   S' = S ∩ {y : n_r . (y - x) >= 0}             (the clamped cosine at x: a clip, not a cut-off)
+//   V  = S' \ (P_1 ∪ ... ∪ P_k),                   P_i = the shadow of occluder i on S' from x,
+// empty when x lies on or behind the source's plane (the clamped cosine at the source). A
+// shadow is the central projection from x onto the source's plane of the part of an occluder
+// polygon inside the pyramid with apex x over S' (clipped in 3D, so every shadow lies inside
+// S' and is convex). Integrals over V are then taken as the integral over S' minus the
+// integral over the union of the shadows; the union is formed only when two shadows overlap
+// (separating-axis test), with the Vatti clipper of Clipper (libpolyclipping, exact integer
+// arithmetic on coordinates scaled by 2^44 in the source's unit square).
+//
+// Occluders are culled once per link against the shaft, the convex hull of the receiver's and
+// the source's corners: a polygon entirely outside one face plane of the hull blocks no
+// segment between them.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "kernel/coupling.h"
+
+namespace radquad {
+
+// A closed polygon in the source's parameter square (u, v), orientation significant:
+// counter-clockwise (positive area) rings add, clockwise ones subtract.
+using SourceRing = std::vector<Eigen::Vector2d>;
+
+// What x sees: integrate f over V as sum_r sign_r * (signed integral of f over ring r).
+struct VisibleRings {
+  std::vector<SourceRing> rings;
+  std::vector<double> signs;  // +1 for S', -1 for the rings of the shadows' union
+  bool empty() const { return rings.empty(); }
+  void clear() {
+    rings.clear();
+    signs.clear();
+  }
+};
+
+struct ExactVisibilityStatistics {
+  std::size_t candidateOccluders = 0;  // after the shaft cull
+  std::size_t unions = 0;              // points whose shadows needed a polygon union
+};
+
+class ExactVisibility {
+ public:
+  // Keeps references to the link's patches and occluder scene; culls the occluders.
+  explicit ExactVisibility(const Link& link);
+
+  // The visible part of the source from x (on the receiver, normal link.receiver.normal).
+  // Thread-compatible: one object per thread, or calls from one thread at a time.
+  void visibleRings(const Eigen::Vector3d& x, VisibleRings& out);
+
+  const ExactVisibilityStatistics& statistics() const { return statistics_; }
+  std::size_t candidateCount() const { return candidates_.size(); }
+
+ private:
+  const Link& link_;
+  Eigen::Vector3d dualU_, dualV_;  // (y - origin) . dualU = u for y in the source's plane
+  std::vector<std::vector<Eigen::Vector3d>> candidates_;
+  ExactVisibilityStatistics statistics_;
+  // Scratch.
+  std::vector<Eigen::Vector3d> clipA_, clipB_;
+  std::vector<SourceRing> shadows_;
+  std::vector<Eigen::Vector4d> shadowBounds_;
+};
+
+// Sutherland-Hodgman clip of a convex polygon (as a vertex list) to the half-space
+// plane(p) >= 0 with plane(p) = normal . p + offset; `out` receives the clipped polygon.
+void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
+                       double offset, std::vector<Eigen::Vector3d>& out);
+
+// The planes (normal, offset) of the convex hull of `points`, with normals pointing outwards;
+// points on a face count as inside. Brute force over point triples: for a handful of points.
+std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Eigen::Vector3d>& points);
+
+// Whether two convex counter-clockwise rings share interior points.
+bool convexRingsOverlap(const SourceRing& a, const SourceRing& b);
+
+// Signed area of a ring in the plane (positive when counter-clockwise).
+double ringArea(const SourceRing& ring);
+
+}  // namespace radquad

@@ -1,0 +1,60 @@
+// The inner integral of the exact gold (docs/design.md, "The exact gold"): for a receiver
+// point x with unit normal n_r and the part V of the source it sees (exact_visibility.h),
+//   I_b(x) = int_V cos(theta) cos(theta') / (pi r^2) phi_b(u(y), v(y)) dA(y)
+// for every source function b of degree d (phi_b the unit-square tensor Legendre basis).
+//
+// Degree 0 (phi_0 = 1): Lambert's contour formula over V's rings, exact.
+//
+// Any degree: with p0 the foot of x on the source's plane, H = |x - p0| and rho, psi polar
+// coordinates about p0 in the plane, the kernel is H (a0 + a1 rho) / (pi (rho^2 + H^2)^2)
+// (a0 + a1 rho = n_r . (y - x), affine) and phi_b along a ray from p0 is a polynomial in rho.
+// Each ring edge (a, b) bounds the signed triangle (p0, a, b); over it, the radial integrals
+//   J_m(R, H) = int_0^R rho^m / (rho^2 + H^2)^2 d rho
+// are taken in closed form (recurrences in atan and log, or a 16-point Gauss rule where R <= 2H,
+// which is exact to rounding there), and the angular one by 12-point Gauss rules along the
+// edge on pieces no longer than the distance to the integrand's nearest complex singularity
+// (at sqrt(d^2 + H^2) from the edge's closest point to p0, d the distance of the edge's line):
+// a geometric refinement towards p0 that keeps the rule's error near rounding (about 1e-14
+// relative) however close x is to the source.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "kernel/patch.h"
+#include "reference/exact_visibility.h"
+
+namespace radquad {
+
+class SourceMoments {
+ public:
+  SourceMoments(const Patch& source, int degree);
+
+  int functions() const { return functions_; }
+
+  // out[b] = I_b(x) for b < functions(); 0 when V is empty.
+  void compute(const Eigen::Vector3d& x, const Eigen::Vector3d& receiverNormal,
+               const VisibleRings& visible, double* out) const;
+
+  // The same by the polar method at every degree (degree 0 included): the independent
+  // check of Lambert's formula in the tests.
+  void computePolar(const Eigen::Vector3d& x, const Eigen::Vector3d& receiverNormal,
+                    const VisibleRings& visible, double* out) const;
+
+  // Lambert's formula alone: int_V cos cos / (pi r^2) dA.
+  double formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d& receiverNormal,
+                    const VisibleRings& visible) const;
+
+ private:
+  const Patch& source_;
+  int degree_;
+  int functions_;
+  Eigen::Vector3d axisX_, axisY_;    // orthonormal frame of the source's plane
+  Eigen::Matrix2d toParameters_;     // (xi, eta) offsets -> (u, v) offsets
+  Eigen::Matrix2d toPlane_;          // (u, v) -> (xi, eta) from the origin
+};
+
+// J_m(R, H) for m = 0..maxPower, written to out[m]. Exposed for tests.
+void radialMoments(double R, double H, int maxPower, double* out);
+
+}  // namespace radquad
