@@ -1,6 +1,9 @@
 #include "reference/exact_gold.h"
 
 #include <cubature.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <vector>
@@ -13,50 +16,71 @@
 namespace radquad {
 namespace {
 
-struct OuterIntegrand {
-  const Link& link;
-  int degree;
-  int functions;
-  double scale;  // sqrt(A_r / A_s)
+// One thread's scratch: visibility and inner integrals are computed per point.
+struct Worker {
   ExactVisibility visibility;
   SourceMoments moments;
   VisibleRings rings;
   std::vector<double> inner;
   std::vector<double> receiverValues;
-  std::uint64_t points = 0;
   bool finite = true;
+
+  Worker(const Link& link, int degree)
+      : visibility(link),
+        moments(link.source, degree),
+        inner(std::size_t(basisFunctionCount(degree))),
+        receiverValues(std::size_t(basisFunctionCount(degree))) {}
+};
+
+struct OuterIntegrand {
+  const Link& link;
+  int degree;
+  int functions;
+  double scale;  // sqrt(A_r / A_s)
+  tbb::enumerable_thread_specific<Worker> workers;
+  std::uint64_t points = 0;
 
   OuterIntegrand(const Link& l, int d)
       : link(l),
         degree(d),
         functions(basisFunctionCount(d)),
         scale(std::sqrt(l.receiver.area / l.source.area)),
-        visibility(l),
-        moments(l.source, d),
-        inner(std::size_t(basisFunctionCount(d))),
-        receiverValues(std::size_t(basisFunctionCount(d))) {}
+        workers([&l, d] { return Worker(l, d); }) {}
 
-  void evaluate(double s, double t, double* out) {
-    ++points;
+  void evaluate(Worker& worker, double s, double t, double* out) const {
     const Eigen::Vector3d x = link.receiver.pointAt(s, t);
-    visibility.visibleRings(x, rings);
-    moments.compute(x, link.receiver.normal, rings, inner.data());
-    tensorBasisValues(degree, s, t, receiverValues.data());
+    worker.visibility.visibleRings(x, worker.rings);
+    worker.moments.compute(x, link.receiver.normal, worker.rings, worker.inner.data());
+    tensorBasisValues(degree, s, t, worker.receiverValues.data());
     for (int a = 0; a < functions; ++a) {
-      const double weight = scale * receiverValues[a];
-      for (int b = 0; b < functions; ++b) out[a * functions + b] = weight * inner[b];
+      const double weight = scale * worker.receiverValues[a];
+      for (int b = 0; b < functions; ++b) out[a * functions + b] = weight * worker.inner[b];
     }
-    for (int b = 0; b < functions; ++b) finite = finite && std::isfinite(inner[b]);
+    for (int b = 0; b < functions; ++b) worker.finite = worker.finite && std::isfinite(worker.inner[b]);
+  }
+
+  bool finite() {
+    bool all = true;
+    for (const Worker& worker : workers) all = all && worker.finite;
+    return all;
   }
 };
 
+// Points are independent: a batch is spread over threads, and the values do not depend on
+// which thread computed them.
 int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* points, void* data,
                       unsigned values, double* out) {
   auto* integrand = static_cast<OuterIntegrand*>(data);
-  for (std::size_t k = 0; k < count; ++k) {
-    integrand->evaluate(points[2 * k], points[2 * k + 1], out + k * values);
-  }
-  return integrand->finite ? 0 : 1;
+  integrand->points += count;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 8),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      Worker& worker = integrand->workers.local();
+                      for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                        integrand->evaluate(worker, points[2 * k], points[2 * k + 1],
+                                            out + k * values);
+                      }
+                    });
+  return integrand->finite() ? 0 : 1;
 }
 
 }  // namespace
@@ -71,7 +95,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const int status =
       hcubature_v(values, integrandCallback, &integrand, 2, low, high, options.maxEvaluations, 0.0,
                   options.tolerance, ERROR_LINF, value.data(), error.data());
-  if (!integrand.finite) {
+  if (!integrand.finite()) {
     throw ComputationError("exact gold: the inner integral was not finite");
   }
   if (status != 0) throw ComputationError("exact gold: the cubature failed");
@@ -91,8 +115,10 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const double largest = gold.coupling.cwiseAbs().maxCoeff();
   gold.converged = gold.couplingError.maxCoeff() <= options.tolerance * largest;
   gold.receiverPoints = integrand.points;
-  gold.polygonUnions = integrand.visibility.statistics().unions;
-  gold.candidateOccluders = integrand.visibility.candidateCount();
+  for (const Worker& worker : integrand.workers) {
+    gold.polygonUnions += worker.visibility.statistics().unions;
+  }
+  gold.candidateOccluders = ExactVisibility(link).candidateCount();
   return gold;
 }
 

@@ -11,7 +11,8 @@
 // evaluation budget is spent (then converged = false). The integrand is analytic between the
 // curves where the visible polygon changes shape (shadow edges and vertices crossing the
 // source's edges, or each other); the bisection concentrates on those curves. No random
-// numbers: the same link gives the same bits.
+// numbers: the same link gives the same bits, whatever the number of threads (the points of
+// a batch are spread over threads; each value depends on its point only).
 #pragma once
 
 #include <Eigen/Core>

@@ -139,15 +139,16 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   clipA_.assign(corners.begin(), corners.end());
   clipConvexPolygon(clipA_, nr, -nr.dot(x), clipB_);
   if (clipB_.size() < 3) return;
-  const std::vector<Eigen::Vector3d> front = clipB_;
-  SourceRing visible;
-  visible.reserve(front.size());
+  std::swap(front_, clipB_);
+  const std::vector<Eigen::Vector3d>& front = front_;
+  SourceRing& visible = out.add(1.0);
   for (const auto& p : front) {
     visible.push_back({(p - source.origin).dot(dualU_), (p - source.origin).dot(dualV_)});
   }
-  if (!(ringArea(visible) > 0.0)) return;
-  out.rings.push_back(std::move(visible));
-  out.signs.push_back(1.0);
+  if (!(ringArea(visible) > 0.0)) {
+    out.clear();
+    return;
+  }
   if (candidates_.empty()) return;
 
   // The pyramid with apex x over S', as half-spaces normal . p + offset >= 0.
@@ -224,10 +225,7 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     }
   }
   if (!overlapping) {
-    for (auto& shadow : shadows_) {
-      out.rings.push_back(std::move(shadow));
-      out.signs.push_back(-1.0);
-    }
+    for (const auto& shadow : shadows_) out.add(shadow, -1.0);
     return;
   }
   ++statistics_.unions;
@@ -243,20 +241,17 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   clipper.AddPaths(paths, ClipperLib::ptSubject, true);
   ClipperLib::Paths united;
   clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  const std::size_t first = out.rings.size();
+  const std::size_t first = out.count();
   double total = 0.0;
   for (const auto& path : united) {
     if (path.size() < 3) continue;
-    SourceRing ring;
-    ring.reserve(path.size());
+    SourceRing& ring = out.add(-1.0);
     for (const auto& p : path) ring.push_back({double(p.X) / kClipperScale, double(p.Y) / kClipperScale});
     total += ringArea(ring);
-    out.rings.push_back(std::move(ring));
-    out.signs.push_back(-1.0);
   }
   // Outer rings of the union must count positive, holes negative, in this file's convention.
   if (total < 0.0) {
-    for (std::size_t r = first; r < out.rings.size(); ++r) out.signs[r] = 1.0;
+    for (std::size_t r = first; r < out.count(); ++r) out.setSign(r, 1.0);
   }
 }
 

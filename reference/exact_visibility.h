@@ -30,15 +30,32 @@ namespace radquad {
 // counter-clockwise (positive area) rings add, clockwise ones subtract.
 using SourceRing = std::vector<Eigen::Vector2d>;
 
-// What x sees: integrate f over V as sum_r sign_r * (signed integral of f over ring r).
-struct VisibleRings {
-  std::vector<SourceRing> rings;
-  std::vector<double> signs;  // +1 for S', -1 for the rings of the shadows' union
-  bool empty() const { return rings.empty(); }
-  void clear() {
-    rings.clear();
-    signs.clear();
+// What x sees: integrate f over V as sum_r sign(r) * (signed integral of f over ring(r)),
+// r < count(). The rings' storage is kept across clear() so that a thread reuses it.
+class VisibleRings {
+ public:
+  std::size_t count() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const SourceRing& ring(std::size_t r) const { return rings_[r]; }
+  double sign(std::size_t r) const { return signs_[r]; }
+  void setSign(std::size_t r, double sign) { signs_[r] = sign; }
+  void clear() { count_ = 0; }
+  // A new empty ring of the given sign (+1 for S', -1 for the rings of the shadows' union).
+  SourceRing& add(double sign) {
+    if (count_ == rings_.size()) {
+      rings_.emplace_back();
+      signs_.push_back(0.0);
+    }
+    rings_[count_].clear();
+    signs_[count_] = sign;
+    return rings_[count_++];
   }
+  void add(const SourceRing& ring, double sign) { add(sign) = ring; }
+
+ private:
+  std::vector<SourceRing> rings_;
+  std::vector<double> signs_;
+  std::size_t count_ = 0;
 };
 
 struct ExactVisibilityStatistics {
@@ -64,7 +81,7 @@ class ExactVisibility {
   std::vector<std::vector<Eigen::Vector3d>> candidates_;
   ExactVisibilityStatistics statistics_;
   // Scratch.
-  std::vector<Eigen::Vector3d> clipA_, clipB_;
+  std::vector<Eigen::Vector3d> clipA_, clipB_, front_;
   std::vector<SourceRing> shadows_;
   std::vector<Eigen::Vector4d> shadowBounds_;
 };

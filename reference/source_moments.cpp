@@ -20,16 +20,18 @@ void scaledRadialMoments(double X, int maxPower, double* out) {
   if (X <= 2.0) {
     // The integrand's only singularities are the poles at r = +-i: for X <= 2 the 16-point
     // rule's error is below 1e-15 relative (Bernstein ellipse parameter above 2.8).
-    const GaussLegendreRule& rule = gaussLegendreUnit(kRadialPoints);
-    for (int m = 0; m <= maxPower; ++m) out[m] = 0.0;
+    static const GaussLegendreRule& rule = gaussLegendreUnit(kRadialPoints);
+    double r[kRadialPoints], term[kRadialPoints];
     for (int k = 0; k < kRadialPoints; ++k) {
-      const double r = X * rule.nodes[k];
-      const double denominator = 1.0 + r * r;
-      double term = X * rule.weights[k] / (denominator * denominator);
-      for (int m = 0; m <= maxPower; ++m) {
-        out[m] += term;
-        term *= r;
-      }
+      r[k] = X * rule.nodes[k];
+      const double denominator = 1.0 + r[k] * r[k];
+      term[k] = X * rule.weights[k] / (denominator * denominator);
+    }
+    for (int m = 0; m <= maxPower; ++m) {
+      double sum = 0.0;
+      for (int k = 0; k < kRadialPoints; ++k) sum += term[k];
+      out[m] = sum;
+      for (int k = 0; k < kRadialPoints; ++k) term[k] *= r[k];
     }
     return;
   }
@@ -52,6 +54,32 @@ void scaledRadialMoments(double X, int maxPower, double* out) {
 // t = t0 + t1 rho: coefficients[i * (d + 1) + k] multiplies rho^k.
 void legendreAlongRay(int d, double t0, double t1, double* coefficients) {
   const int stride = d + 1;
+  if (d <= 3) {
+    // Taylor coefficients phi_i^(k)(t0) t1^k / k! of phi_1 = sqrt3 (2t - 1),
+    // phi_2 = sqrt5 (6t^2 - 6t + 1), phi_3 = sqrt7 (20t^3 - 30t^2 + 12t - 1).
+    constexpr double s3 = 1.7320508075688772, s5 = 2.2360679774997898, s7 = 2.6457513110645907;
+    coefficients[0] = 1.0;
+    for (int k = 1; k < stride; ++k) coefficients[k] = 0.0;
+    if (d == 0) return;
+    double* c1 = coefficients + stride;
+    c1[0] = s3 * (2.0 * t0 - 1.0);
+    c1[1] = s3 * 2.0 * t1;
+    for (int k = 2; k < stride; ++k) c1[k] = 0.0;
+    if (d == 1) return;
+    const double t1s = t1 * t1;
+    double* c2 = coefficients + 2 * stride;
+    c2[0] = s5 * ((6.0 * t0 - 6.0) * t0 + 1.0);
+    c2[1] = s5 * (12.0 * t0 - 6.0) * t1;
+    c2[2] = s5 * 6.0 * t1s;
+    if (d == 2) return;
+    c2[3] = 0.0;
+    double* c3 = coefficients + 3 * stride;
+    c3[0] = s7 * (((20.0 * t0 - 30.0) * t0 + 12.0) * t0 - 1.0);
+    c3[1] = s7 * ((60.0 * t0 - 60.0) * t0 + 12.0) * t1;
+    c3[2] = s7 * (60.0 * t0 - 30.0) * t1s;
+    c3[3] = s7 * 20.0 * t1s * t1;
+    return;
+  }
   std::fill(coefficients, coefficients + stride * stride, 0.0);
   // P_k(z), z = 2t - 1 = z0 + z1 rho.
   const double z0 = 2.0 * t0 - 1.0, z1 = 2.0 * t1;
@@ -98,8 +126,8 @@ SourceMoments::SourceMoments(const Patch& source, int degree)
 double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
                                  const VisibleRings& visible) const {
   double total = 0.0;
-  for (std::size_t r = 0; r < visible.rings.size(); ++r) {
-    const SourceRing& ring = visible.rings[r];
+  for (std::size_t r = 0; r < visible.count(); ++r) {
+    const SourceRing& ring = visible.ring(r);
     double sum = 0.0;
     const std::size_t count = ring.size();
     for (std::size_t i = 0; i < count; ++i) {
@@ -114,7 +142,7 @@ double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d
     }
     // A ring counter-clockwise about the source's normal, seen from x in front of the source,
     // gives a negative sum.
-    total -= visible.signs[r] * sum;
+    total -= visible.sign(r) * sum;
   }
   return total / (2.0 * std::numbers::pi);
 }
@@ -130,7 +158,20 @@ void SourceMoments::compute(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
 
 void SourceMoments::computePolar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
                                  const VisibleRings& visible, double* out) const {
-  const int d = degree_;
+  switch (degree_) {
+    case 0: return polar<0>(x, n, visible, out);
+    case 1: return polar<1>(x, n, visible, out);
+    case 2: return polar<2>(x, n, visible, out);
+    case 3: return polar<3>(x, n, visible, out);
+    default: return polar<-1>(x, n, visible, out);
+  }
+}
+
+// D >= 0: the degree as a compile-time constant (loops unrolled); D = -1: degree_ at run time.
+template <int D>
+void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                          const VisibleRings& visible, double* out) const {
+  const int d = D >= 0 ? D : degree_;
   const int stride = d + 1;
   std::fill(out, out + functions_, 0.0);
   if (visible.empty()) return;
@@ -143,7 +184,7 @@ void SourceMoments::computePolar(const Eigen::Vector3d& x, const Eigen::Vector3d
   const double a0 = -H * n.dot(source_.normal);  // n_r . (p0 - x)
   const double nx = n.dot(axisX_), ny = n.dot(axisY_);
   const int maxPower = 2 * d + 2;
-  const GaussLegendreRule& rule = gaussLegendreUnit(kEdgePoints);
+  static const GaussLegendreRule& rule = gaussLegendreUnit(kEdgePoints);
   const double kernelScale = H / std::numbers::pi;
 
   double J[kMaxPower + 1];
@@ -179,8 +220,8 @@ void SourceMoments::computePolar(const Eigen::Vector3d& x, const Eigen::Vector3d
     }
   };
 
-  for (std::size_t r = 0; r < visible.rings.size(); ++r) {
-    const SourceRing& ring = visible.rings[r];
+  for (std::size_t r = 0; r < visible.count(); ++r) {
+    const SourceRing& ring = visible.ring(r);
     const std::size_t count = ring.size();
     for (std::size_t e = 0; e < count; ++e) {
       const Eigen::Vector2d a = toPlane_ * ring[e] - foot;
@@ -217,7 +258,7 @@ void SourceMoments::computePolar(const Eigen::Vector3d& x, const Eigen::Vector3d
           const double s = s0 + (s1 - s0) * rule.nodes[k];
           const Eigen::Vector2d w = closest + s * direction;
           const double R2 = w.squaredNorm();
-          node(w, visible.signs[r] * sign * std::fabs(distance) / R2 * (s1 - s0) * rule.weights[k]);
+          node(w, visible.sign(r) * sign * std::fabs(distance) / R2 * (s1 - s0) * rule.weights[k]);
         }
       }
     }

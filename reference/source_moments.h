@@ -46,6 +46,10 @@ class SourceMoments {
                     const VisibleRings& visible) const;
 
  private:
+  template <int D>
+  void polar(const Eigen::Vector3d& x, const Eigen::Vector3d& receiverNormal,
+             const VisibleRings& visible, double* out) const;
+
   const Patch& source_;
   int degree_;
   int functions_;

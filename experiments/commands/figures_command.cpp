@@ -1,7 +1,8 @@
 // `radquad figures [--quick] [--gold]`: regenerates Figures 1 and 2: runs the study configs
-// experiments/configs/fig1.json and fig2.json (fig1-quick.json, fig2-quick.json with
-// --quick) into results/fig1.json, results/fig2.json, then draws plots/fig1.{png,svg} and
-// plots/fig2.{png,svg} with plots/figures.py. Quick runs go to results/quick/ and
+// experiments/configs/fig1.json and fig2.json (synthetic links) and fig1-scene.json,
+// fig2-scene.json (the links of a solve of the cornell scene) (the -quick variants with
+// --quick) into results/<name>.json, then draws plots/<name>.{png,svg} with
+// plots/figures.py. Quick runs go to results/quick/ and
 // plots/quick/ so they never overwrite the canonical tables.
 #include <iostream>
 #include <memory>
@@ -36,7 +37,7 @@ void runFigures(const FiguresOptions& options) {
   createOutputDirectory(results);
   createOutputDirectory(plots);
   const StudyOptions study{options.gold, !options.quiet};
-  for (const char* figure : {"fig1", "fig2"}) {
+  for (const char* figure : {"fig1", "fig2", "fig1-scene", "fig2-scene"}) {
     runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
                    results / (std::string(figure) + ".json"), study);
   }
@@ -48,7 +49,9 @@ void runFigures(const FiguresOptions& options) {
 void addFiguresCommand(CLI::App& app) {
   auto options = std::make_shared<FiguresOptions>();
   CLI::App* command = app.add_subcommand(
-      "figures", "Regenerate Figures 1 and 2: results/fig{1,2}.json and plots/fig{1,2}.{png,svg}");
+      "figures",
+      "Regenerate Figures 1 and 2 (synthetic and scene-derived links): results/fig{1,2}{,-scene}.json "
+      "and plots/fig{1,2}{,-scene}.{png,svg}");
   command->add_flag("--quick", options->quick,
                     "The small CI suites, into results/quick/ and plots/quick/");
   command->add_flag("--gold", options->gold, "Also score against the gold reference (slow)");

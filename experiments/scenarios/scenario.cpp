@@ -177,6 +177,7 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
                                    link.source.edgeU.norm(), link.source.edgeV.norm()});
   switch (link.occluderKind) {
     case OccluderKind::none:
+    case OccluderKind::scene:  // never in the ranges (not a parseable name)
       return;
     case OccluderKind::oneBlocker: {
       const double w = random.uniform(0.3, 1.0) * largest, h = random.uniform(0.3, 1.0) * largest;
@@ -250,6 +251,7 @@ const char* orientationName(Orientation orientation) {
 const char* occluderKindName(OccluderKind kind) {
   for (const auto& [value, name] : kOccluderNames)
     if (value == kind) return name;
+  if (kind == OccluderKind::scene) return "scene";
   return "?";
 }
 

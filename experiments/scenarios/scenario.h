@@ -36,7 +36,9 @@ namespace radquad {
 
 enum class StudyClass { unoccluded, partial };
 enum class Orientation { parallel, perpendicular, tilted };
-enum class OccluderKind { none, oneBlocker, severalBlockers, slats, soup };
+// `scene`: the patches of a scene around a scene-derived link (experiments/study/scene_links.h);
+// never generated, so not a name the geometry ranges accept.
+enum class OccluderKind { none, oneBlocker, severalBlockers, slats, soup, scene };
 
 const char* studyClassName(StudyClass linkClass);
 const char* orientationName(Orientation orientation);

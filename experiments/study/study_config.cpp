@@ -31,7 +31,7 @@ std::string ruleName(const nlohmann::json& value, const std::string& where) {
 StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& where) {
   checkKeys(value, where,
             {"_doc", "figure", "seed", "classes", "rules", "trials", "reference", "gold",
-             "visible_fraction", "max_candidates_per_link", "geometry"},
+             "visible_fraction", "max_candidates_per_link", "geometry", "links"},
             {"figure", "seed", "classes", "rules"});
   StudyConfig config;
   const auto& figure = value["figure"];
@@ -91,6 +91,13 @@ StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& whe
   }
   if (value.contains("geometry"))
     config.geometry = parseGeometryRanges(value["geometry"], where + ": geometry");
+  if (value.contains("links")) {
+    if (value.contains("geometry") || value.contains("visible_fraction")) {
+      throw InputError(where + ": links: scene-derived links take neither geometry nor "
+                               "visible_fraction (their class is the solver's)");
+    }
+    config.sceneLinks = parseSceneLinkOptions(value["links"], where + ": links");
+  }
   return config;
 }
 
@@ -101,7 +108,7 @@ StudyConfig readStudyConfig(const std::filesystem::path& path) {
 nlohmann::json studyConfigToJson(const StudyConfig& config) {
   nlohmann::json classes = nlohmann::json::object();
   for (const auto& [linkClass, count] : config.classes) classes[studyClassName(linkClass)] = count;
-  return {{"figure", config.figure == StudyFigure::fig1 ? "fig1" : "fig2"},
+  nlohmann::json out = {{"figure", config.figure == StudyFigure::fig1 ? "fig1" : "fig2"},
           {"degree", config.degree()},
           {"seed", config.seed},
           {"classes", classes},
@@ -112,6 +119,12 @@ nlohmann::json studyConfigToJson(const StudyConfig& config) {
           {"visible_fraction", {config.minVisibleFraction, config.maxVisibleFraction}},
           {"max_candidates_per_link", config.maxCandidatesPerLink},
           {"geometry", geometryRangesToJson(config.geometry)}};
+  if (config.sceneLinks) {
+    out.erase("geometry");
+    out.erase("visible_fraction");
+    out["links"] = sceneLinkOptionsToJson(*config.sceneLinks);
+  }
+  return out;
 }
 
 }  // namespace radquad

@@ -8,8 +8,12 @@
 //   trials      independent trials of each random rule per link (default 10)
 //   reference   the paper's reference: {"strata_per_axis": 10, "replicates": 10}; the
 //               replicates (independent draws) estimate its own standard error
-//   gold        the gold reference used with --gold: {"tolerance": 1e-9, "dense_strata": 24,
-//               "dense_replicates": 16} (reference/gold_reference.h)
+//   gold        the gold reference used with --gold: {"method": "exact", "tolerance": 1e-9,
+//               "exact_tolerance": 1e-7, "max_evaluations", "max_exact_occluders": 64,
+//               "dense_strata": 24, "dense_replicates": 16} (reference/gold_reference.h)
+//   links       optional: {"scene": NAME or PATH, "degree": 2, "bf_eps": 0.05}: the links of
+//               a solve of that scene instead of generated ones (experiments/study/
+//               scene_links.h); `geometry` and `visible_fraction` then do not apply
 //   visible_fraction  [low, high]: a partial link's reference visible fraction must lie
 //               strictly inside (default [0.05, 0.95])
 //   max_candidates_per_link  give up on a class after N times its link count of candidates
@@ -20,12 +24,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "experiments/scenarios/scenario.h"
+#include "experiments/study/scene_links.h"
 #include "reference/gold_reference.h"
 #include "reference/stratified_reference.h"
 
@@ -45,6 +51,7 @@ struct StudyConfig {
   double maxVisibleFraction = 0.95;
   int maxCandidatesPerLink = 40;
   GeometryRanges geometry;
+  std::optional<SceneLinkOptions> sceneLinks;
 
   // The basis degree of the figure: 0 for Figure 1, 2 for Figure 2 (DESIGN.md, "The study").
   int degree() const { return figure == StudyFigure::fig1 ? 0 : 2; }

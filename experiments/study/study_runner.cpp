@@ -7,10 +7,12 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "experiments/scenarios/random_stream.h"
 #include "experiments/study/reference_estimate.h"
+#include "experiments/study/scene_links.h"
 #include "experiments/study/study_metrics.h"
 #include "kernel/input_error.h"
 #include "quadrature/prepared_rule.h"
@@ -24,7 +26,37 @@ struct Scorers {
   std::vector<int> trials;
   ReferenceEstimator reference;
   bool gold = false;
+  const SceneLinkPool* pool = nullptr;  // scene-derived links, or null: generated ones
 };
+
+// One candidate's geometry: generated from its seed, or taken from the scene's links.
+struct CandidateGeometry {
+  Patch receiver, source;
+  std::unique_ptr<OccluderScene> scene;
+  Orientation orientation = Orientation::parallel;
+  OccluderKind occluderKind = OccluderKind::none;
+};
+
+Orientation orientationOf(const Patch& receiver, const Patch& source) {
+  const double cosine = std::fabs(receiver.normal.dot(source.normal));
+  if (cosine > 1.0 - 1e-9) return Orientation::parallel;
+  if (cosine < 1e-9) return Orientation::perpendicular;
+  return Orientation::tilted;
+}
+
+CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& scorers,
+                                    std::size_t classIndex, StudyClass linkClass,
+                                    std::uint64_t index) {
+  if (scorers.pool != nullptr) {
+    const SceneLinkEntry& entry = scorers.pool->entry(linkClass, std::size_t(index));
+    return {entry.receiver, entry.source, scorers.pool->occluders(entry),
+            orientationOf(entry.receiver, entry.source), OccluderKind::scene};
+  }
+  const GeneratedLink generated =
+      generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
+  return {generated.receiver, generated.source, generated.buildScene(), generated.orientation,
+          generated.occluderKind};
+}
 
 struct Candidate {
   bool accepted = false;
@@ -45,10 +77,9 @@ void addInto(std::vector<double>& sum, const std::vector<double>& values, double
 void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
                        StudyClass linkClass, std::uint64_t index, CouplingAccumulator& accumulator,
                        Candidate& out) {
-  const GeneratedLink generated =
-      generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
-  const auto scene = generated.buildScene();
-  const Link link{generated.receiver, generated.source, scene.get()};
+  const CandidateGeometry generated =
+      candidateGeometry(config, scorers, classIndex, linkClass, index);
+  const Link link{generated.receiver, generated.source, generated.scene.get()};
   scorers.reference.draw(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
                          out.draw);
   out.rays = out.draw.raysCast;
@@ -58,7 +89,7 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.occluderKind = generated.occluderKind;
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;
-  if (linkClass == StudyClass::partial) {
+  if (linkClass == StudyClass::partial && scorers.pool == nullptr) {
     out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
     out.accepted = !out.mostlyBlocked && record.visibleFraction < config.maxVisibleFraction;
   }
@@ -68,10 +99,9 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
 void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t classIndex,
                StudyClass linkClass, CouplingAccumulator& accumulator, Candidate& candidate) {
   const std::uint64_t index = candidate.record.candidate;
-  const GeneratedLink generated =
-      generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
-  const auto scene = generated.buildScene();
-  const Link link{generated.receiver, generated.source, scene.get()};
+  const CandidateGeometry generated =
+      candidateGeometry(config, scorers, classIndex, linkClass, index);
+  const Link link{generated.receiver, generated.source, generated.scene.get()};
   const std::uint64_t referenceSeed = deriveSeed(config.seed, {classIndex, index, 1});
   LinkRecord& record = candidate.record;
   const ReferenceResult reference =
@@ -87,6 +117,8 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     const Eigen::MatrixXd& G = gold.coupling;
     record.goldMethod = gold.method;
     record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
+    record.goldMaxRelativeError = gold.couplingError.maxCoeff() / G.cwiseAbs().maxCoeff();
+    record.goldConverged = gold.converged;
     record.referenceRelativeErrorVsGold = relativeError(K, G);
     record.referenceL1BoundVsGold = l1ErrorBound(K - G, area);
   }
@@ -120,8 +152,15 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                   std::size_t classIndex, StudyClass linkClass, int wanted) {
   ClassRun run;
   run.linkClass = linkClass;
+  if (scorers.pool != nullptr) {
+    // Scene-derived: every link qualifies; a class holds at most the scene's links.
+    run.available = scorers.pool->size(linkClass);
+    wanted = int(std::min<std::size_t>(std::size_t(wanted), run.available));
+  }
   run.wanted = wanted;
-  const std::uint64_t limit = std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
+  const std::uint64_t limit = scorers.pool != nullptr
+                                  ? std::uint64_t(wanted)
+                                  : std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
   tbb::enumerable_thread_specific<CouplingAccumulator> accumulators;
   std::vector<Candidate> candidates;
   while (run.links.size() < std::size_t(wanted)) {
@@ -187,6 +226,13 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
   const int degree = config.degree();
   Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), options.gold};
   StudyRun run;
+  std::unique_ptr<SceneLinkPool> pool;
+  if (config.sceneLinks) {
+    pool = std::make_unique<SceneLinkPool>(*config.sceneLinks, config.seed);
+    scorers.pool = pool.get();
+    run.sceneLinks = pool->totalLinks();
+    run.sceneOccludedLinks = pool->occludedLinks();
+  }
   for (const std::string& name : config.rules) {
     scorers.rules.emplace_back(findRule(name), degree);
     const Rule& rule = scorers.rules.back().rule();

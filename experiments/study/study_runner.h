@@ -37,8 +37,12 @@ struct LinkRecord {
   std::vector<double> relativeErrorVsGold;
   std::vector<std::vector<double>> l1BoundVsGold;
   double referenceRelativeErrorVsGold = 0.0;
-  std::string goldMethod;          // "gauss product" or "dense stratified"
+  std::string goldMethod;  // "gauss product", "exact visibility" or "dense stratified"
   double goldRelativeError = 0.0;  // the gold's own error estimate of K[0][0] / K[0][0]
+  // The gold's largest error estimate over the largest |K| entry, and whether it met its
+  // tolerance.
+  double goldMaxRelativeError = 0.0;
+  bool goldConverged = true;
   std::vector<double> referenceL1BoundVsGold;
 };
 
@@ -50,6 +54,7 @@ struct ClassRun {
   std::uint64_t rejectedMostlyBlocked = 0;  // visible fraction <= low
   std::vector<LinkRecord> links;            // accepted, in candidate order
   std::uint64_t referenceRays = 0;          // over every candidate drawn
+  std::size_t available = 0;                // scene-derived: the scene's links of the class
 };
 
 struct RuleInfo {
@@ -64,6 +69,8 @@ struct StudyRun {
   std::string referenceName;
   std::size_t referenceSamples = 0;
   std::vector<ClassRun> classes;
+  // Scene-derived links: the solve's final active links, and the occluded ones among them.
+  std::size_t sceneLinks = 0, sceneOccludedLinks = 0;
 };
 
 // Throws InputError when a class cannot be filled within max_candidates_per_link.

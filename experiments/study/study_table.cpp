@@ -61,13 +61,15 @@ nlohmann::json candidateCounts(const ClassRun& run) {
     ++byOccluder[occluderKindName(link.occluderKind)];
     ++byOrientation[orientationName(link.orientation)];
   }
-  return {{"generated", run.generated},
-          {"accepted", run.links.size()},
-          {"rejected_mostly_visible", run.rejectedMostlyVisible},
-          {"rejected_mostly_blocked", run.rejectedMostlyBlocked},
-          {"reference_rays", run.referenceRays},
-          {"accepted_by_occluder", byOccluder},
-          {"accepted_by_orientation", byOrientation}};
+  nlohmann::json counts = {{"generated", run.generated},
+                            {"accepted", run.links.size()},
+                            {"rejected_mostly_visible", run.rejectedMostlyVisible},
+                            {"rejected_mostly_blocked", run.rejectedMostlyBlocked},
+                            {"reference_rays", run.referenceRays},
+                            {"accepted_by_occluder", byOccluder},
+                            {"accepted_by_orientation", byOrientation}};
+  if (run.available > 0) counts["scene_links_of_class"] = run.available;
+  return counts;
 }
 
 nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& classRun, bool gold,
@@ -154,14 +156,25 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
          "(reference/stratified_reference.h)"},
         {"relative_standard_error", standardErrorSummary(allLinks)}}},
   };
+  if (config.sceneLinks) {
+    table["scene_links"] = {{"final_active", run.sceneLinks},
+                            {"occluded_not_scored", run.sceneOccludedLinks}};
+  }
   if (options.gold) {
     std::map<std::string, int> methods;
     for (const LinkRecord& link : allLinks) ++methods[link.goldMethod];
     const SummaryStatistics own =
         summarize(column(allLinks, [](const LinkRecord& l) { return l.goldRelativeError; }));
+    const SummaryStatistics ownLargest = summarize(
+        column(allLinks, [](const LinkRecord& l) { return l.goldMaxRelativeError; }));
+    int unconverged = 0;
+    for (const LinkRecord& link : allLinks) unconverged += link.goldConverged ? 0 : 1;
     table["gold"] = {{"options", goldOptionsToJson(config.gold)},
                      {"links_by_method", methods},
-                     {"own_relative_error", {{"mean", own.mean}, {"max", own.max}}}};
+                     {"unconverged_links", unconverged},
+                     {"own_relative_error", {{"mean", own.mean}, {"max", own.max}}},
+                     {"own_max_error_over_largest_entry",
+                      {{"mean", ownLargest.mean}, {"max", ownLargest.max}}}};
   }
   if (!fig2) {
     // Figure 1: one class (partial), flattened to the top level.

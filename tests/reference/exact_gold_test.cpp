@@ -77,10 +77,8 @@ TEST(SourceMoments, PolarMethodReproducesLambertsFormula) {
   const Patch source = Patch::make({0, 1, 1}, {1, 0, 0.2}, {0.1, -1, 0}, "source");
   const SourceMoments moments(source, 0);
   VisibleRings rings;
-  rings.rings.push_back({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
-  rings.signs.push_back(1.0);
-  rings.rings.push_back({{0.2, 0.3}, {0.7, 0.25}, {0.5, 0.8}});
-  rings.signs.push_back(-1.0);
+  rings.add({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 1.0);
+  rings.add({{0.2, 0.3}, {0.7, 0.25}, {0.5, 0.8}}, -1.0);
   std::mt19937_64 random(3);
   std::uniform_real_distribution<double> uniform(-0.5, 1.5);
   const Eigen::Vector3d normal(0, 0, 1);

@@ -7,6 +7,11 @@
 #include "experiments/study/reference_estimate.h"
 #include "experiments/study/study_runner.h"
 #include "reference/stratified_reference.h"
+#include "experiments/scene_input.h"
+#include "experiments/study/scene_links.h"
+#include "kernel/input_error.h"
+
+#include <cmath>
 
 namespace radquad {
 namespace {
@@ -77,6 +82,79 @@ TEST(StudyRunner, ReferenceStandardErrorAgreesWithTheReferenceLibrary) {
         << mine.standardError << "\nvs\n"
         << theirs.couplingStandardError;
   }
+}
+
+StudyConfig sceneConfig(int unoccluded, int partial) {
+  StudyConfig config = parseStudyConfig(
+      nlohmann::json::parse(R"({"figure": "fig2", "seed": 5, "classes": {"partial": 1},
+                              "rules": ["FullGauss", "Stratified"], "trials": 2,
+                              "reference": {"replicates": 3},
+                              "links": {"scene": "cornell", "degree": 0, "bf_eps": 0.5}})"),
+      "scene");
+  config.classes = {{StudyClass::unoccluded, unoccluded}, {StudyClass::partial, partial}};
+  return config;
+}
+
+TEST(SceneLinks, ASuiteOfASolvesLinksIsTheSameWhateverTheThreadCount) {
+  const StudyConfig config = sceneConfig(5, 5);
+  std::string tables[2];
+  for (const int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    const StudyRun run = runStudy(config, StudyOptions{});
+    ASSERT_EQ(run.classes.size(), 2u);
+    for (const ClassRun& classRun : run.classes) {
+      EXPECT_EQ(classRun.links.size(), 5u);
+      EXPECT_EQ(classRun.generated, 5u);  // every scene link qualifies
+      for (const LinkRecord& link : classRun.links) {
+        EXPECT_EQ(link.occluderKind, OccluderKind::scene);
+        // The solver proves a link unoccluded only when nothing is in its shaft: the
+        // reference's Embree rays, an independent visibility test, are then never blocked.
+        if (classRun.linkClass == StudyClass::unoccluded) {
+          EXPECT_EQ(link.visibleFraction, 1.0);
+        }
+      }
+    }
+    tables[threads - 1] = studyTable(config, StudyOptions{}, run).dump();
+  }
+  EXPECT_EQ(tables[0], tables[1]);
+}
+
+TEST(SceneLinks, ThePoolHoldsTheSolvesFinalLinksAsPatchesWithTheRestOfTheSceneAsOccluders) {
+  const SceneLinkPool pool(SceneLinkOptions{"cornell", 0, 0.5}, 5);
+  const Scene scene = loadScene("cornell");
+  EXPECT_EQ(pool.size(StudyClass::unoccluded) + pool.size(StudyClass::partial) +
+                pool.occludedLinks(),
+            pool.totalLinks());
+  ASSERT_GT(pool.size(StudyClass::partial), 10u);
+  for (std::size_t k = 0; k < 10; ++k) {
+    const SceneLinkEntry& entry = pool.entry(StudyClass::partial, k);
+    EXPECT_NE(entry.receiverPatch, entry.sourcePatch);
+    // Elements lie inside their patches: same plane, area at most the patch's.
+    const Patch& patch = scene.patches[std::size_t(entry.receiverPatch)].patch;
+    EXPECT_NEAR(std::fabs(entry.receiver.normal.dot(patch.normal)), 1.0, 1e-12);
+    EXPECT_LE(entry.receiver.area, patch.area * (1 + 1e-12));
+    const auto occluders = pool.occluders(entry);
+    EXPECT_EQ(occluders->primitiveCount(), scene.patches.size() - 2);
+  }
+}
+
+TEST(SceneLinks, ConfigsRejectGeometryBesideSceneLinksAndNameBadScenes) {
+  const auto parse = [](const char* text) {
+    return parseStudyConfig(nlohmann::json::parse(text), "cfg");
+  };
+  EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                         "rules": ["FullGauss"], "geometry": {},
+                         "links": {"scene": "cornell"}})"),
+               InputError);
+  EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                         "rules": ["FullGauss"], "links": {"degree": 2}})"),
+               InputError);
+  EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                         "rules": ["FullGauss"], "links": {"scene": "cornell", "degree": 4}})"),
+               InputError);
+  StudyConfig config = parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                                 "rules": ["FullGauss"], "links": {"scene": "no_such_scene"}})");
+  EXPECT_THROW(runStudy(config, StudyOptions{}), InputError);
 }
 
 }  // namespace

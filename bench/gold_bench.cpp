@@ -1,0 +1,197 @@
+// Time per link of the gold references on the study's partial links (the Figure 1 suite's
+// generator, experiments/scenarios/scenario.h, default geometry): the exact-visibility gold
+// (reference/exact_gold.h) beside the dense stratified gold of the study configs (16^4
+// strata, 8 replicates = 524,288 samples), at degree 0 and 2, per occluder kind.
+//
+//   build/release/bench/gold_bench --benchmark_min_time=1
+//
+// Each iteration integrates the same 6 links of one kind (the first 6 candidates whose
+// visible fraction, by a 6^4 Gauss rule, lies in (0.05, 0.95)); the time per link is the
+// iteration time / 6. Counters: receiver_points (exact), max_relative_error (the largest
+// reported error over the largest |K| entry; for dense stratified its standard error).
+// The soup's exact gold is capped at 20,000 receiver points (it does not converge there).
+// unionClipper / unionBoostGeometry: the shadows' union by Clipper (the one used) and by
+// Boost.Geometry, on the same overlapping quadrilaterals (counter `area` checks they agree).
+#include <benchmark/benchmark.h>
+#include <polyclipping/clipper.hpp>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#include <cmath>
+#include <random>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "experiments/scenarios/random_stream.h"
+#include "experiments/scenarios/scenario.h"
+#include "quadrature/prepared_rule.h"
+#include "quadrature/rules/gauss_product.h"
+#include "reference/exact_gold.h"
+#include "reference/gold_reference.h"
+
+namespace radquad {
+namespace {
+
+constexpr int kLinksPerKind = 6;
+
+struct KindLinks {
+  std::vector<GeneratedLink> generated;
+  std::vector<std::unique_ptr<OccluderScene>> scenes;
+  std::vector<Link> links;
+};
+
+KindLinks partialLinks(OccluderKind kind) {
+  KindLinks out;
+  const GeometryRanges ranges;
+  const PreparedRule probe(std::make_shared<GaussProductRule>(std::array{6, 6, 6, 6}), 0);
+  CouplingAccumulator accumulator;
+  for (std::uint64_t i = 0; out.links.size() < kLinksPerKind && i < 100000; ++i) {
+    GeneratedLink generated = generateLink(ranges, StudyClass::partial, deriveSeed(1, {1, i, 0}));
+    if (generated.occluderKind != kind) continue;
+    auto scene = generated.buildScene();
+    const Link link{generated.receiver, generated.source, scene.get()};
+    LinkIntegral probed;
+    probe.integrate(link, 0, accumulator, probed);
+    const double visible = probed.visibleFraction();
+    if (visible <= 0.05 || visible >= 0.95) continue;
+    out.generated.push_back(std::move(generated));
+    out.scenes.push_back(std::move(scene));
+  }
+  for (std::size_t k = 0; k < out.generated.size(); ++k) {
+    out.links.push_back(Link{out.generated[k].receiver, out.generated[k].source,
+                             out.scenes[k].get()});
+  }
+  return out;
+}
+
+void exactPerLink(benchmark::State& state, OccluderKind kind, int degree, double tolerance) {
+  const KindLinks links = partialLinks(kind);
+  ExactGoldOptions options;
+  options.tolerance = tolerance;
+  if (kind == OccluderKind::soup) options.maxEvaluations = 20000;
+  double points = 0.0, worst = 0.0;
+  for (auto _ : state) {
+    points = 0.0;
+    worst = 0.0;
+    for (const Link& link : links.links) {
+      const ExactGold gold = exactGold(link, degree, options);
+      points += double(gold.receiverPoints);
+      worst = std::max(worst, gold.couplingError.maxCoeff() / gold.coupling.cwiseAbs().maxCoeff());
+      benchmark::DoNotOptimize(gold.coupling.data());
+    }
+  }
+  state.counters["receiver_points"] = points / double(links.links.size());
+  state.counters["max_relative_error"] = worst;
+  state.counters["links"] = double(links.links.size());
+}
+
+void densePerLink(benchmark::State& state, OccluderKind kind, int degree) {
+  const KindLinks links = partialLinks(kind);
+  GoldOptions options;
+  options.method = GoldMethod::stratified;
+  options.denseStrata = 16;
+  options.denseReplicates = 8;
+  double worst = 0.0;
+  for (auto _ : state) {
+    worst = 0.0;
+    for (const Link& link : links.links) {
+      const GoldReference gold = goldReference(link, degree, 5, options);
+      worst = std::max(worst, gold.couplingError.maxCoeff() / gold.coupling.cwiseAbs().maxCoeff());
+      benchmark::DoNotOptimize(gold.coupling.data());
+    }
+  }
+  state.counters["max_relative_error"] = worst;
+  state.counters["links"] = double(links.links.size());
+}
+
+#define GOLD_BENCHMARKS(kind, name)                                                          \
+  BENCHMARK_CAPTURE(densePerLink, name##_d0, kind, 0)->Unit(benchmark::kMillisecond);        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d0_1e7, kind, 0, 1e-7)                              \
+      ->Unit(benchmark::kMillisecond);                                                       \
+  BENCHMARK_CAPTURE(densePerLink, name##_d2, kind, 2)->Unit(benchmark::kMillisecond);        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e5, kind, 2, 1e-5)                              \
+      ->Unit(benchmark::kMillisecond);                                                       \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e7, kind, 2, 1e-7)->Unit(benchmark::kMillisecond)
+
+GOLD_BENCHMARKS(OccluderKind::oneBlocker, one_blocker);
+GOLD_BENCHMARKS(OccluderKind::severalBlockers, several_blockers);
+GOLD_BENCHMARKS(OccluderKind::slats, slats);
+BENCHMARK_CAPTURE(densePerLink, soup_d0, OccluderKind::soup, 0)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(exactPerLink, soup_d0_1e7_capped, OccluderKind::soup, 0, 1e-7)
+    ->Unit(benchmark::kMillisecond);
+
+// The polygon union the exact gold forms where shadows overlap, by the two libraries it could
+// use: `count` overlapping convex quadrilaterals (random, fixed seed) in the unit square.
+std::vector<std::vector<std::array<double, 2>>> overlappingQuads(int count) {
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<std::vector<std::array<double, 2>>> quads;
+  for (int q = 0; q < count; ++q) {
+    const double cx = 0.3 + 0.4 * uniform(random), cy = 0.3 + 0.4 * uniform(random);
+    const double angle = 6.283185307179586 * uniform(random);
+    const double a = 0.1 + 0.2 * uniform(random), b = 0.1 + 0.2 * uniform(random);
+    const double c = std::cos(angle), s = std::sin(angle);
+    quads.push_back({{cx + c * a - s * b, cy + s * a + c * b},
+                     {cx - c * a - s * b, cy - s * a + c * b},
+                     {cx - c * a + s * b, cy - s * a - c * b},
+                     {cx + c * a + s * b, cy + s * a - c * b}});
+  }
+  return quads;
+}
+
+void unionClipper(benchmark::State& state) {
+  const auto quads = overlappingQuads(int(state.range(0)));
+  constexpr double kScale = 17592186044416.0;  // 2^44, as in reference/exact_visibility.cpp
+  double area = 0.0;
+  for (auto _ : state) {
+    ClipperLib::Paths paths(quads.size());
+    for (std::size_t q = 0; q < quads.size(); ++q) {
+      for (const auto& p : quads[q]) {
+        paths[q].push_back({ClipperLib::cInt(std::llround(p[0] * kScale)),
+                            ClipperLib::cInt(std::llround(p[1] * kScale))});
+      }
+    }
+    ClipperLib::Clipper clipper;
+    clipper.AddPaths(paths, ClipperLib::ptSubject, true);
+    ClipperLib::Paths united;
+    clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    area = 0.0;
+    for (const auto& path : united) area += ClipperLib::Area(path);
+    benchmark::DoNotOptimize(area);
+  }
+  state.counters["area"] = std::fabs(area) / (kScale * kScale);
+}
+
+void unionBoostGeometry(benchmark::State& state) {
+  namespace bg = boost::geometry;
+  using Point = bg::model::d2::point_xy<double>;
+  using Polygon = bg::model::polygon<Point, false>;  // counter-clockwise
+  using MultiPolygon = bg::model::multi_polygon<Polygon>;
+  const auto quads = overlappingQuads(int(state.range(0)));
+  double area = 0.0;
+  for (auto _ : state) {
+    MultiPolygon united;
+    for (const auto& quad : quads) {
+      Polygon polygon;
+      for (const auto& p : quad) bg::append(polygon.outer(), Point(p[0], p[1]));
+      bg::correct(polygon);
+      MultiPolygon next;
+      bg::union_(united, polygon, next);
+      united = std::move(next);
+    }
+    area = bg::area(united);
+    benchmark::DoNotOptimize(area);
+  }
+  state.counters["area"] = area;
+}
+
+BENCHMARK(unionClipper)->Arg(2)->Arg(6)->Arg(20)->Unit(benchmark::kMicrosecond);
+BENCHMARK(unionBoostGeometry)->Arg(2)->Arg(6)->Arg(20)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace radquad
+
+BENCHMARK_MAIN();

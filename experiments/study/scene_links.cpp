@@ -1,0 +1,90 @@
+#include "experiments/study/scene_links.h"
+
+#include <utility>
+
+#include "experiments/json_input.h"
+#include "experiments/scenarios/random_stream.h"
+#include "experiments/scene_input.h"
+#include "kernel/input_error.h"
+#include "radiosity/hierarchy.h"
+#include "radiosity/solver.h"
+
+namespace radquad {
+
+SceneLinkOptions parseSceneLinkOptions(const nlohmann::json& value, const std::string& where) {
+  checkKeys(value, where, {"scene", "degree", "bf_eps"}, {"scene"});
+  SceneLinkOptions options;
+  if (!value["scene"].is_string() || value["scene"].get<std::string>().empty()) {
+    throw InputError(where + ": scene must be a built-in scene name or a path");
+  }
+  options.scene = value["scene"].get<std::string>();
+  if (value.contains("degree")) {
+    const auto& degree = value["degree"];
+    if (!degree.is_number_integer() || degree.get<long long>() < 0 || degree.get<long long>() > 3) {
+      throw InputError(where + ": degree must be an integer in [0, 3]");
+    }
+    options.degree = degree.get<int>();
+  }
+  if (value.contains("bf_eps")) {
+    options.bfEps = finiteNumber(value["bf_eps"], where + ": bf_eps");
+    if (!(options.bfEps > 0.0)) throw InputError(where + ": bf_eps must be positive");
+  }
+  return options;
+}
+
+nlohmann::json sceneLinkOptionsToJson(const SceneLinkOptions& options) {
+  return {{"scene", options.scene}, {"degree", options.degree}, {"bf_eps", options.bfEps}};
+}
+
+SceneLinkPool::SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed)
+    : scene_(loadScene(options.scene)) {
+  SolverOptions solverOptions;
+  solverOptions.degree = options.degree;
+  solverOptions.bfEpsilon = options.bfEps;
+  solverOptions.rules = RuleChoice::kFixed;
+  Solver solver(scene_, solverOptions);
+  solver.solve();
+  const Hierarchy& hierarchy = solver.hierarchy();
+  for (const SolverLink& link : solver.links()) {
+    if (link.split) continue;  // replaced by its children
+    if (link.visibility == LinkClass::kOccluded) {  // inactive: carries nothing
+      ++total_;
+      ++occluded_;
+      continue;
+    }
+    if (!link.active) continue;
+    ++total_;
+    const Element& receiver = hierarchy[link.receiver];
+    const Element& source = hierarchy[link.source];
+    SceneLinkEntry entry{receiver.geometry, source.geometry, receiver.patch,
+                         source.patch,      receiver.level,  source.level};
+    (link.visibility == LinkClass::kPartial ? partial_ : unoccluded_).push_back(std::move(entry));
+  }
+  // A seeded Fisher-Yates shuffle per class: candidate k is the k-th of a uniform sample.
+  for (auto* links : {&unoccluded_, &partial_}) {
+    ScenarioRandom random(deriveSeed(seed, {links == &partial_ ? 1u : 0u, 7}));
+    for (std::size_t k = links->size(); k > 1; --k) {
+      std::swap((*links)[k - 1], (*links)[std::size_t(random.index(k))]);
+    }
+  }
+}
+
+std::size_t SceneLinkPool::size(StudyClass linkClass) const {
+  return linkClass == StudyClass::partial ? partial_.size() : unoccluded_.size();
+}
+
+const SceneLinkEntry& SceneLinkPool::entry(StudyClass linkClass, std::size_t k) const {
+  return linkClass == StudyClass::partial ? partial_.at(k) : unoccluded_.at(k);
+}
+
+std::unique_ptr<OccluderScene> SceneLinkPool::occluders(const SceneLinkEntry& entry) const {
+  auto scene = std::make_unique<OccluderScene>();
+  for (std::size_t p = 0; p < scene_.patches.size(); ++p) {
+    if (int(p) == entry.receiverPatch || int(p) == entry.sourcePatch) continue;
+    scene->addParallelogram(scene_.patches[p].patch);
+  }
+  scene->commit();
+  return scene;
+}
+
+}  // namespace radquad

@@ -1,0 +1,65 @@
+// Scene-derived links for the study (README.md, "The study"): the links a hierarchical solve
+// of a scene ends with, as the report's Figure 2 measured them ("the links in a scene that
+// used a quadratic multiwavelet basis"), rather than synthetic pairs.
+//
+// A study config's "links": {"scene": NAME or PATH, "degree": D, "bf_eps": E} solves the
+// scene with fixed Gauss rules at basis degree D and BF threshold E (other solver options at
+// their defaults), and takes its final active links: receiver and source elements as patches,
+// every other patch of the scene as an occluder, the class from the solver's visibility
+// classification (unoccluded or partial; occluded links carry nothing and are not scored).
+// Candidate k of a class is the link at position k of that class's links in a fixed
+// pseudo-random order drawn from the study's seed, so a suite of N links is a uniform sample
+// without replacement, the same for any thread count.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/scenarios/scenario.h"
+#include "kernel/occluder_scene.h"
+#include "radiosity/scene.h"
+
+namespace radquad {
+
+struct SceneLinkOptions {
+  std::string scene;  // built-in name or path
+  int degree = 2;
+  double bfEps = 0.05;
+};
+
+SceneLinkOptions parseSceneLinkOptions(const nlohmann::json& value, const std::string& where);
+nlohmann::json sceneLinkOptionsToJson(const SceneLinkOptions& options);
+
+struct SceneLinkEntry {
+  Patch receiver;
+  Patch source;
+  int receiverPatch = 0;
+  int sourcePatch = 0;
+  int receiverLevel = 0;
+  int sourceLevel = 0;
+};
+
+class SceneLinkPool {
+ public:
+  // Solves the scene; throws InputError for a bad scene, ComputationError when the solve
+  // fails.
+  SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed);
+
+  // Links of the class in sampling order (StudyClass::unoccluded or partial).
+  std::size_t size(StudyClass linkClass) const;
+  const SceneLinkEntry& entry(StudyClass linkClass, std::size_t k) const;
+  // The scene's patches except the link's own two, committed.
+  std::unique_ptr<OccluderScene> occluders(const SceneLinkEntry& entry) const;
+  std::size_t totalLinks() const { return total_; }
+  std::size_t occludedLinks() const { return occluded_; }
+
+ private:
+  Scene scene_;
+  std::vector<SceneLinkEntry> unoccluded_, partial_;
+  std::size_t total_ = 0, occluded_ = 0;
+};
+
+}  // namespace radquad
