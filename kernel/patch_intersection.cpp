@@ -172,4 +172,46 @@ double nearnessRatio(const Patch& a, const Patch& b) {
   return patchDistance(a, b) / std::min(smaller.edgeU.norm(), smaller.edgeV.norm());
 }
 
+bool polygonCrossesPatch(const std::vector<Eigen::Vector3d>& polygon, const Patch& patch) {
+  const double size = std::max(patch.edgeU.norm(), patch.edgeV.norm());
+  const double tolerance = 1e-9 * size;
+  std::vector<double> heights;
+  double lowest = 0.0, highest = 0.0;
+  for (const auto& p : polygon) {
+    heights.push_back(patch.normal.dot(p - patch.origin));
+    lowest = std::min(lowest, heights.back());
+    highest = std::max(highest, heights.back());
+  }
+  if (!(lowest < -tolerance && highest > tolerance)) return false;
+  // The convex polygon meets the plane in a segment: its two edge crossings.
+  std::vector<Eigen::Vector2d> ends;
+  for (std::size_t i = 0, n = polygon.size(); i < n && ends.size() < 2; ++i) {
+    const double a = heights[i], b = heights[(i + 1) % n];
+    if ((a < 0.0) != (b < 0.0)) {
+      const Eigen::Vector3d point = polygon[i] + (a / (a - b)) * (polygon[(i + 1) % n] - polygon[i]);
+      ends.push_back(patch.parametersOf(point));
+    }
+  }
+  if (ends.size() < 2) return false;
+  // Liang-Barsky: the part of the segment inside [0,1]^2, shrunk by the tolerance.
+  const double margin = tolerance / size;
+  double t0 = 0.0, t1 = 1.0;
+  const Eigen::Vector2d d = ends[1] - ends[0];
+  for (int axis = 0; axis < 2; ++axis) {
+    for (const double bound : {margin, 1.0 - margin}) {
+      const bool lower = bound == margin;
+      const double p = lower ? -d[axis] : d[axis];
+      const double q = lower ? ends[0][axis] - bound : bound - ends[0][axis];
+      if (p == 0.0) {
+        if (q < 0.0) return false;
+      } else {
+        const double t = q / p;
+        if (p < 0.0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+      }
+    }
+  }
+  return t1 - t0 > 0.0 && (t1 - t0) * (d.norm() * size) > tolerance;
+}
+
 }  // namespace radquad

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "kernel/patch.h"
 
@@ -19,6 +20,12 @@ namespace radquad {
 // "overlap in their common plane over an area A"), or nothing when they do not. Lengths and
 // areas below 1e-9 of the patches' size are treated as touching.
 std::optional<std::string> patchesInterpenetrate(const Patch& a, const Patch& b);
+
+// Whether a convex polygon (an occluder: a parallelogram's corners or a triangle) crosses the
+// patch's interior: it has vertices strictly on both sides of the patch's plane, and the
+// segment where it meets that plane passes through the patch by more than 1e-9 of its size.
+// Touching (a vertex or an edge on the plane) is not crossing.
+bool polygonCrossesPatch(const std::vector<Eigen::Vector3d>& polygon, const Patch& patch);
 
 // The Euclidean distance between two parallelograms (0 when they touch or cross): the least
 // of the distances from each one's corners to the other and between their edges.

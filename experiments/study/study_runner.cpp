@@ -15,6 +15,7 @@
 #include "experiments/study/scene_links.h"
 #include "experiments/study/study_metrics.h"
 #include "kernel/input_error.h"
+#include "kernel/patch_intersection.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
 
@@ -36,6 +37,12 @@ struct CandidateGeometry {
   Orientation orientation = Orientation::parallel;
   OccluderKind occluderKind = OccluderKind::none;
 };
+
+double distanceFactorOf(const Patch& receiver, const Patch& source) {
+  const double largest = std::max({receiver.edgeU.norm(), receiver.edgeV.norm(),
+                                   source.edgeU.norm(), source.edgeV.norm()});
+  return (receiver.centre() - source.centre()).norm() / largest;
+}
 
 Orientation orientationOf(const Patch& receiver, const Patch& source) {
   const double cosine = std::fabs(receiver.normal.dot(source.normal));
@@ -61,6 +68,7 @@ CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& sc
 struct Candidate {
   bool accepted = false;
   bool mostlyBlocked = false;
+  bool occluderCrossesPatch = false;
   std::uint64_t rays = 0;
   LinkIntegral draw;  // the reference's reported draw, kept for the scoring pass
   LinkRecord record;
@@ -80,6 +88,20 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   const CandidateGeometry generated =
       candidateGeometry(config, scorers, classIndex, linkClass, index);
   const Link link{generated.receiver, generated.source, generated.scene.get()};
+  // A generated occluder that passes through the receiver or the source is no physical
+  // configuration (and its kernel is singular along the cut): such candidates are rejected
+  // before anything is computed.
+  if (scorers.pool == nullptr && generated.scene != nullptr) {
+    for (const auto& polygon : generated.scene->polygons()) {
+      if (polygonCrossesPatch(polygon, generated.receiver) ||
+          polygonCrossesPatch(polygon, generated.source)) {
+        out.record.candidate = index;
+        out.occluderCrossesPatch = true;
+        out.accepted = false;
+        return;
+      }
+    }
+  }
   scorers.reference.draw(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
                          out.draw);
   out.rays = out.draw.raysCast;
@@ -87,6 +109,7 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.candidate = index;
   record.orientation = generated.orientation;
   record.occluderKind = generated.occluderKind;
+  record.distanceFactor = distanceFactorOf(generated.receiver, generated.source);
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;
   if (linkClass == StudyClass::partial && scorers.pool == nullptr) {
@@ -197,6 +220,8 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
       run.referenceRays += candidate.rays;
       if (candidate.accepted) {
         kept.push_back(k);
+      } else if (candidate.occluderCrossesPatch) {
+        ++run.rejectedOccluderCrossesPatch;
       } else if (candidate.mostlyBlocked) {
         ++run.rejectedMostlyBlocked;
       } else {

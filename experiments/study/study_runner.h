@@ -29,6 +29,7 @@ struct LinkRecord {
   Orientation orientation = Orientation::parallel;
   OccluderKind occluderKind = OccluderKind::none;
   double visibleFraction = 1.0;                  // by the reference's rays
+  double distanceFactor = 0.0;  // centre distance / the longest side of the two patches
   double referenceRelativeStandardError = 0.0;   // NaN when the reference gives none
   std::vector<double> referenceL1StandardError;  // per source function; empty when none
   std::vector<double> relativeError;             // per rule
@@ -52,6 +53,7 @@ struct ClassRun {
   std::uint64_t generated = 0;
   std::uint64_t rejectedMostlyVisible = 0;  // visible fraction >= high
   std::uint64_t rejectedMostlyBlocked = 0;  // visible fraction <= low
+  std::uint64_t rejectedOccluderCrossesPatch = 0;  // an occluder passes through a patch
   std::vector<LinkRecord> links;            // accepted, in candidate order
   std::uint64_t referenceRays = 0;          // over every candidate drawn
   std::size_t available = 0;                // scene-derived: the scene's links of the class

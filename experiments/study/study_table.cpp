@@ -41,10 +41,120 @@ nlohmann::json boundTable(const std::vector<LinkRecord>& links, const auto& pick
   }
   double total = 0.0;
   for (const double mean : means) total += mean;
+  const SummaryStatistics totalStatistics = summarize(totals);
   return {{"per_source_function", means},
           {"total", total},
           {"per_source_function_sem", sems},
-          {"total_sem", summarize(totals).sem}};
+          {"total_sem", totalStatistics.sem},
+          {"total_median", totalStatistics.median},
+          {"total_max", totalStatistics.max}};
+}
+
+double sum(const std::vector<double>& values) {
+  double total = 0.0;
+  for (const double value : values) total += value;
+  return total;
+}
+
+// Four significant digits: per-link values are for reading and plotting, not for rescoring.
+double rounded(double value) {
+  if (value == 0.0 || !std::isfinite(value)) return value;
+  const double scale = std::pow(10.0, 3 - std::floor(std::log10(std::fabs(value))));
+  return std::round(value * scale) / scale;
+}
+
+// Every link's own scores, in candidate order (rules in the order of "rules").
+nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
+  nlohmann::json links = nlohmann::json::array();
+  for (const LinkRecord& link : classRun.links) {
+    nlohmann::json entry = {{"candidate", link.candidate},
+                            {"occluder", occluderKindName(link.occluderKind)},
+                            {"orientation", orientationName(link.orientation)},
+                            {"distance_factor", rounded(link.distanceFactor)},
+                            {"visible_fraction", rounded(link.visibleFraction)}};
+    auto roundedAll = [](const std::vector<double>& values) {
+      std::vector<double> out;
+      for (const double value : values) out.push_back(rounded(value));
+      return out;
+    };
+    entry["relative_error"] = roundedAll(link.relativeError);
+    if (fig2) {
+      std::vector<double> totals;
+      for (const auto& bound : link.l1Bound) totals.push_back(sum(bound));
+      entry["l1_error_bound_total"] = roundedAll(totals);
+    }
+    if (gold) {
+      entry["gold_method"] = link.goldMethod;
+      entry["relative_error_vs_gold"] = roundedAll(link.relativeErrorVsGold);
+      entry["reference_relative_error_vs_gold"] = rounded(link.referenceRelativeErrorVsGold);
+      if (fig2) {
+        std::vector<double> totals;
+        for (const auto& bound : link.l1BoundVsGold) totals.push_back(sum(bound));
+        entry["l1_error_bound_total_vs_gold"] = roundedAll(totals);
+      }
+    }
+    links.push_back(std::move(entry));
+  }
+  return links;
+}
+
+// Mean and median of every rule's relative error (and L1 bound total, Figure 2) over the
+// links of one group, rules in the order of "rules".
+nlohmann::json groupScores(const std::vector<const LinkRecord*>& group, std::size_t rules,
+                           bool gold, bool fig2) {
+  nlohmann::json out = {{"links", group.size()}};
+  if (group.empty()) return out;
+  auto scores = [&](const auto& pick) {
+    std::vector<double> means, medians;
+    for (std::size_t r = 0; r < rules; ++r) {
+      std::vector<double> values;
+      for (const LinkRecord* link : group) values.push_back(pick(*link, r));
+      const SummaryStatistics statistics = summarize(values);
+      means.push_back(statistics.mean);
+      medians.push_back(statistics.median);
+    }
+    return nlohmann::json{{"mean", means}, {"median", medians}};
+  };
+  out["relative_error"] = scores([](const LinkRecord& l, std::size_t r) { return l.relativeError[r]; });
+  if (fig2) {
+    out["l1_error_bound_total"] =
+        scores([](const LinkRecord& l, std::size_t r) { return sum(l.l1Bound[r]); });
+  }
+  if (gold) {
+    out["relative_error_vs_gold"] =
+        scores([](const LinkRecord& l, std::size_t r) { return l.relativeErrorVsGold[r]; });
+    if (fig2) {
+      out["l1_error_bound_total_vs_gold"] =
+          scores([](const LinkRecord& l, std::size_t r) { return sum(l.l1BoundVsGold[r]); });
+    }
+  }
+  return out;
+}
+
+// Where each rule wins: the scores by occluder kind and by distance band (distance of the
+// centres over the longest side).
+nlohmann::json breakdown(const ClassRun& classRun, std::size_t rules, bool gold, bool fig2) {
+  std::map<std::string, std::vector<const LinkRecord*>> byOccluder;
+  for (const LinkRecord& link : classRun.links) {
+    byOccluder[occluderKindName(link.occluderKind)].push_back(&link);
+  }
+  nlohmann::json occluders = nlohmann::json::object();
+  for (const auto& [kind, group] : byOccluder) occluders[kind] = groupScores(group, rules, gold, fig2);
+  constexpr double kBands[] = {0.0, 0.5, 1.0, 2.0, 1e300};
+  nlohmann::json distances = nlohmann::json::array();
+  for (int band = 0; band < 4; ++band) {
+    std::vector<const LinkRecord*> group;
+    for (const LinkRecord& link : classRun.links) {
+      if (link.distanceFactor >= kBands[band] && link.distanceFactor < kBands[band + 1]) {
+        group.push_back(&link);
+      }
+    }
+    nlohmann::json entry = groupScores(group, rules, gold, fig2);
+    entry["distance_factor"] = {kBands[band], band == 3 ? nlohmann::json(nullptr)
+                                                        : nlohmann::json(kBands[band + 1])};
+    distances.push_back(std::move(entry));
+  }
+  return {{"by_occluder", occluders}, {"by_distance", distances}};
 }
 
 nlohmann::json standardErrorSummary(const std::vector<LinkRecord>& links) {
@@ -65,6 +175,7 @@ nlohmann::json candidateCounts(const ClassRun& run) {
                             {"accepted", run.links.size()},
                             {"rejected_mostly_visible", run.rejectedMostlyVisible},
                             {"rejected_mostly_blocked", run.rejectedMostlyBlocked},
+                            {"rejected_occluder_crosses_patch", run.rejectedOccluderCrossesPatch},
                             {"reference_rays", run.referenceRays},
                             {"accepted_by_occluder", byOccluder},
                             {"accepted_by_orientation", byOrientation}};
@@ -130,7 +241,9 @@ nlohmann::json classTable(const StudyRun& run, const ClassRun& classRun, bool go
   return {{"links", classRun.links.size()},
           {"candidates", candidateCounts(classRun)},
           {"reference", classReference(run, classRun, gold, fig2)},
-          {"rules", rules}};
+          {"rules", rules},
+          {"breakdown", breakdown(classRun, run.rules.size(), gold, fig2)},
+          {"per_link", perLinkTable(classRun, gold, fig2)}};
 }
 
 }  // namespace
@@ -182,6 +295,8 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
     table["links"] = only["links"];
     table["candidates"] = only["candidates"];
     table["rules"] = only["rules"];
+    table["breakdown"] = only["breakdown"];
+    table["per_link"] = only["per_link"];
     if (options.gold)
       table["reference"]["relative_error_vs_gold"] = only["reference"]["relative_error_vs_gold"];
   } else {

@@ -105,5 +105,25 @@ TEST(CoincidentPoints, EveryPathStaysFiniteOnCrossingPatches) {
   }
 }
 
+TEST(PolygonCrossesPatch, OnlyAPolygonThroughThePatchsInteriorCrossesIt) {
+  const Patch floor = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "floor");
+  const std::vector<Eigen::Vector3d> through = {
+      {0.2, 0.5, -0.3}, {0.8, 0.5, -0.3}, {0.8, 0.5, 0.3}, {0.2, 0.5, 0.3}};
+  EXPECT_TRUE(polygonCrossesPatch(through, floor));
+  // The same wall beside the floor crosses its plane, not the floor.
+  std::vector<Eigen::Vector3d> beside = through;
+  for (auto& p : beside) p.y() += 1.2;
+  EXPECT_FALSE(polygonCrossesPatch(beside, floor));
+  // Standing on the floor (an edge on it) or touching it with a vertex is not crossing.
+  const std::vector<Eigen::Vector3d> standing = {
+      {0.2, 0.5, 0.0}, {0.8, 0.5, 0.0}, {0.8, 0.5, 0.6}, {0.2, 0.5, 0.6}};
+  EXPECT_FALSE(polygonCrossesPatch(standing, floor));
+  const std::vector<Eigen::Vector3d> corner = {{0.5, 0.5, 0.0}, {0.9, 0.5, 0.4}, {0.1, 0.5, 0.4}};
+  EXPECT_FALSE(polygonCrossesPatch(corner, floor));
+  // A tilted triangle whose cut just clips the floor's corner region crosses it.
+  const std::vector<Eigen::Vector3d> clipping = {{-0.5, 0.1, -0.2}, {0.1, -0.5, -0.2}, {0.5, 0.5, 0.3}};
+  EXPECT_TRUE(polygonCrossesPatch(clipping, floor));
+}
+
 }  // namespace
 }  // namespace radquad

@@ -47,8 +47,9 @@ TEST(StudyRunner, PartialLinksQualifyByTheReferenceVisibleFraction) {
   for (const LinkRecord& link : unoccluded.links) EXPECT_EQ(link.visibleFraction, 1.0);
   const ClassRun& partial = run.classes[1];
   ASSERT_EQ(partial.links.size(), 12u);
-  EXPECT_EQ(partial.generated,
-            partial.links.size() + partial.rejectedMostlyBlocked + partial.rejectedMostlyVisible);
+  EXPECT_EQ(partial.generated, partial.links.size() + partial.rejectedMostlyBlocked +
+                                   partial.rejectedMostlyVisible +
+                                   partial.rejectedOccluderCrossesPatch);
   for (const LinkRecord& link : partial.links) {
     EXPECT_GT(link.visibleFraction, 0.05);
     EXPECT_LT(link.visibleFraction, 0.95);
