@@ -85,6 +85,8 @@ nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
     }
     if (gold) {
       entry["gold_method"] = link.goldMethod;
+      entry["gold_converged"] = link.goldConverged;
+      entry["gold_max_error_over_largest_entry"] = rounded(link.goldMaxRelativeError);
       entry["relative_error_vs_gold"] = roundedAll(link.relativeErrorVsGold);
       entry["reference_relative_error_vs_gold"] = rounded(link.referenceRelativeErrorVsGold);
       if (fig2) {
