@@ -1,3 +1,5 @@
+#include <cerrno>
+#include <cstdlib>
 #include "experiments/json_input.h"
 
 #include <cmath>
@@ -9,11 +11,35 @@
 
 namespace radquad {
 
+std::uint64_t maxInputBytes() {
+  const char* value = std::getenv("RADQUAD_MAX_INPUT_BYTES");
+  if (value == nullptr || *value == '\0') return kDefaultMaxInputBytes;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long parsed = std::strtoull(value, &end, 10);
+  if (errno != 0 || *end != '\0' || parsed == 0 || value[0] == '-') {
+    throw InputError(std::string("RADQUAD_MAX_INPUT_BYTES: expected a positive decimal integer, got '") +
+                     value + "'");
+  }
+  return parsed;
+}
+
 nlohmann::json readJsonFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read at most the cap plus one byte, so that a device or a pipe without end (/dev/zero)
+  // is refused after the cap instead of filling memory.
+  const std::uint64_t cap = maxInputBytes();
+  std::string text;
+  char buffer[1 << 16];
+  while (in) {
+    in.read(buffer, sizeof buffer);
+    text.append(buffer, std::size_t(in.gcount()));
+    if (text.size() > cap) {
+      throw InputError(path.string() + ": larger than the input limit of " + std::to_string(cap) +
+                       " bytes (set RADQUAD_MAX_INPUT_BYTES to raise it)");
+    }
+  }
   // Keys seen in each open object, innermost last: a key given twice in one object is an
   // error (nlohmann keeps the last one silently).
   std::vector<std::vector<std::string>> openObjects;
@@ -32,7 +58,7 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
     return true;
   };
   try {
-    return nlohmann::json::parse(text.str(), rejectDuplicateKeys);
+    return nlohmann::json::parse(text, rejectDuplicateKeys);
   } catch (const nlohmann::json::parse_error& error) {
     throw InputError(path.string() + ": malformed JSON: " + error.what());
   } catch (const nlohmann::json::out_of_range& error) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <memory>
@@ -17,7 +18,13 @@
 
 namespace radquad {
 
-// Reads and parses a JSON file; InputError names the path when it cannot be read or parsed.
+// Input files are read up to a size limit: 256 MiB by default, or the positive decimal
+// number of bytes in the environment variable RADQUAD_MAX_INPUT_BYTES.
+inline constexpr std::uint64_t kDefaultMaxInputBytes = 256ull << 20;
+std::uint64_t maxInputBytes();
+
+// Reads and parses a JSON file; InputError names the path when it cannot be read or parsed,
+// or is larger than maxInputBytes() (devices and pipes included: reading stops there).
 nlohmann::json readJsonFile(const std::filesystem::path& path);
 
 // Throws InputError when `object` is not an object or has a key outside `allowed`, or misses

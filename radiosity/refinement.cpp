@@ -141,6 +141,17 @@ bool Solver::refinementPass() {
     std::vector<int> created;
     for (std::size_t k = 0; k < pending.size(); ++k) {
       if (choices[k] < 0) continue;
+      if (hierarchy_->size() + 4 > options_.maxElements || links_.size() + 4 > options_.maxLinks) {
+        budgetExceeded_ =
+            hierarchy_->size() + 4 > options_.maxElements
+                ? "the element budget (" + std::to_string(options_.maxElements) +
+                      " elements) was reached during refinement"
+                : "the link budget (" + std::to_string(options_.maxLinks) +
+                      " links) was reached during refinement";
+        budgetExceeded_ += "; raise --max-elements / --max-links, or refine less (a larger "
+                           "--bf-eps or --min-area)";
+        break;
+      }
       const int index = pending[k];
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
@@ -174,6 +185,7 @@ bool Solver::refinementPass() {
     }
     classifyLinks(created);
     pending = std::move(created);
+    if (!budgetExceeded_.empty()) break;
   }
   return refined;
 }

@@ -404,6 +404,10 @@ void Solver::solve() {
   for (int iteration = 1; iteration <= options_.maxIterations; ++iteration) {
     const bool recheck = iteration == 1 || change < options_.tolerance;
     const bool refined = recheck && refinementPass();
+    if (!budgetExceeded_.empty()) {
+      statistics_.failure = budgetExceeded_;
+      break;
+    }
     if (recheck && !refined && iteration > 1) {
       statistics_.converged = true;
       break;

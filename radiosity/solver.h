@@ -55,6 +55,11 @@ struct SolverOptions {
   double tolerance = 1e-4;
   int maxIterations = 200;
   int maxLevel = 12;  // deepest quadtree level an element may have
+  // Budgets: refinement stops, and the solve fails with a message naming the budget, when
+  // it would create more elements or links than these (about 0.3 KB per element and 0.15 KB
+  // per link before couplings; the couplings' own store comes on top).
+  std::size_t maxElements = 10000000;
+  std::size_t maxLinks = 100000000;
   // Links between touching elements (a shared edge or corner: the kernel is singular there)
   // are integrated by splitting both elements into quadrants, recursively to this depth,
   // where sub-elements still touch; the link's rule is applied to every piece.
@@ -164,6 +169,7 @@ class Solver {
   // The element of a link to split: 0 receiver, 1 source (solver.cpp).
   int splitSide(const SolverLink& link) const;
   bool refinementPass();
+  std::string budgetExceeded_;  // set by refinementPass when a budget stops it
   void classifyLinks(std::vector<int>& created);
   bool oracleSaysRefine(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.

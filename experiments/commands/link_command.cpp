@@ -71,9 +71,6 @@ void runLink(LinkOptions options) {
   const LinkDescription description = readLinkFile(options.linkPath);
   const PreparedRule prepared(findRule(options.ruleName), options.degree);
   const SceneLink sceneLink = buildSceneLink(description);
-  if (options.trials < 1) {
-    throw InputError("--trials " + std::to_string(options.trials) + ": expected at least 1");
-  }
   const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
   if (!integral.coupling.allFinite() || !std::isfinite(integral.formFactor)) {
     throw ComputationError(options.linkPath + ": rule " + prepared.rule().name() +
@@ -144,7 +141,8 @@ void addLinkCommand(CLI::App& app) {
   command
       ->add_option("--trials", options->trials,
                    "Random rules: run T trials with seeds S..S+T-1 and report mean and "
-                   "standard deviation")
+                   "standard deviation (1..100000, the study's cap)")
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   command->callback([options] { runLink(*options); });
 }

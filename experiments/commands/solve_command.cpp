@@ -39,6 +39,8 @@ struct SolveCommandOptions {
   double partialFactor = SolverOptions{}.partialFactor;
   double tolerance = SolverOptions{}.tolerance;
   int maxIterations = SolverOptions{}.maxIterations;
+  std::size_t maxElements = SolverOptions{}.maxElements;
+  std::size_t maxLinks = SolverOptions{}.maxLinks;
   int singularDepth = SolverOptions{}.singularDepth;
   int threads = 0;
   bool quiet = false;
@@ -94,6 +96,8 @@ void runSolve(const SolveCommandOptions& command) {
   options.partialFactor = command.partialFactor;
   options.tolerance = command.tolerance;
   options.maxIterations = command.maxIterations;
+  options.maxElements = command.maxElements;
+  options.maxLinks = command.maxLinks;
   options.singularDepth = command.singularDepth;
   if (!command.quiet) {
     options.progress = [](const SolveProgress& progress) {
@@ -134,6 +138,8 @@ void runSolve(const SolveCommandOptions& command) {
         {"partial_factor", options.partialFactor},
         {"tolerance", options.tolerance},
         {"max_iterations", options.maxIterations},
+        {"max_elements", options.maxElements},
+        {"max_links", options.maxLinks},
         {"singular_depth", options.singularDepth},
         {"iteration", "jacobi"}}},
       {"kernel_evaluations", statistics.kernelEvaluations},
@@ -253,6 +259,16 @@ void addSolveCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--max-iterations", options->maxIterations, "Iteration cap")
       ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  command
+      ->add_option("--max-elements", options->maxElements,
+                   "Element budget: the solve fails (exit 3) when refinement would exceed it")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
+      ->capture_default_str();
+  command
+      ->add_option("--max-links", options->maxLinks,
+                   "Link budget: the solve fails (exit 3) when refinement would exceed it")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
       ->capture_default_str();
   command
       ->add_option("--singular-depth", options->singularDepth,

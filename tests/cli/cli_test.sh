@@ -34,6 +34,12 @@ expect_error() {
 }
 
 expect_error malformed_json "malformed.json: malformed JSON" link "$fixtures/malformed.json" --rule FullGauss
+# Limits: input files are read up to a cap (RADQUAD_MAX_INPUT_BYTES, default 256 MiB), a
+# device without end included; trials are capped.
+RADQUAD_MAX_INPUT_BYTES=100 expect_error input_cap "larger than the input limit of 100 bytes" link "$fixtures/good_link.json" --rule FullGauss
+RADQUAD_MAX_INPUT_BYTES=1000000 expect_error endless_input "/dev/zero: larger than the input limit" link /dev/zero --rule FullGauss
+RADQUAD_MAX_INPUT_BYTES=-5 expect_error bad_input_cap "RADQUAD_MAX_INPUT_BYTES: expected a positive decimal integer" link "$fixtures/good_link.json" --rule FullGauss
+expect_error trials_cap "--trials" link "$fixtures/good_link.json" --rule MonteCarlo --trials 2147483647
 expect_error unknown_key "unknown key 'normal'" link "$fixtures/unknown_key.json" --rule FullGauss
 expect_error wrong_length "receiver.origin: expected an array of 3 numbers" link "$fixtures/wrong_length.json" --rule FullGauss
 expect_error non_finite "non_finite.json: non-finite number" link "$fixtures/non_finite.json" --rule FullGauss
@@ -119,7 +125,7 @@ sd = out["standard_deviation"]["coupling"][0][0]
 assert abs(out["mean_coupling"][0][0] - 0.1998249 / 2) < 4 * sd / 40 ** 0.5, out["mean_coupling"]
 PY
 check trials_json $?
-expect_error zero_trials "--trials 0: expected at least 1" link "$fixtures/good_link.json" --rule Stratified --trials 0
+expect_error zero_trials "--trials: Value 0 not in range 1 to 100000" link "$fixtures/good_link.json" --rule Stratified --trials 0
 
 # The reference with its standard error.
 "$radquad" reference "$fixtures/good_link.json" --degree 1 --seed 2 >"$scratch/reference.json"

@@ -62,6 +62,10 @@ if [[ -e "$work/diverged.png" ]]; then
   echo "FAIL: a diverged solve wrote its render"; failures=$((failures + 1))
 fi
 expect_status 3 "iteration cap" "no convergence within 2 iterations" solve cornell --max-iterations 2
+# Refinement budgets: the solve stops with a message naming the budget (exit 3).
+expect_status 3 "element budget" "element budget (200 elements) was reached" solve cornell --max-elements 200
+expect_status 3 "link budget" "link budget (500 links) was reached" solve cornell --max-links 500
+expect_status 2 "zero element budget" "--max-elements" solve cornell --max-elements 0
 expect_status 0 "strips with the composite rule" "" solve "$work/strips.json" --degree 2
 
 if [[ $failures -ne 0 ]]; then echo "$failures failure(s)"; exit 1; fi
