@@ -40,6 +40,10 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
                        " bytes (set RADQUAD_MAX_INPUT_BYTES to raise it)");
     }
   }
+  return parseJsonText(text, path.string());
+}
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& where) {
   // Keys seen in each open object, innermost last: a key given twice in one object is an
   // error (nlohmann keeps the last one silently).
   std::vector<std::vector<std::string>> openObjects;
@@ -51,7 +55,7 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
     if (event == Event::key && !openObjects.empty()) {
       const std::string key = parsed.get<std::string>();
       for (const std::string& seen : openObjects.back()) {
-        if (seen == key) throw InputError(path.string() + ": duplicate key '" + key + "'");
+        if (seen == key) throw InputError(where + ": duplicate key '" + key + "'");
       }
       openObjects.back().push_back(key);
     }
@@ -60,10 +64,10 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
   try {
     return nlohmann::json::parse(text, rejectDuplicateKeys);
   } catch (const nlohmann::json::parse_error& error) {
-    throw InputError(path.string() + ": malformed JSON: " + error.what());
+    throw InputError(where + ": malformed JSON: " + error.what());
   } catch (const nlohmann::json::out_of_range& error) {
     // A literal such as 1e999 overflows to infinity while parsing.
-    throw InputError(path.string() + ": non-finite number: " + error.what());
+    throw InputError(where + ": non-finite number: " + error.what());
   }
 }
 

@@ -26,6 +26,8 @@ std::uint64_t maxInputBytes();
 // Reads and parses a JSON file; InputError names the path when it cannot be read or parsed,
 // or is larger than maxInputBytes() (devices and pipes included: reading stops there).
 nlohmann::json readJsonFile(const std::filesystem::path& path);
+// The same rules (duplicate keys, non-finite literals) on text in memory; `where` names it.
+nlohmann::json parseJsonText(const std::string& text, const std::string& where);
 
 // Throws InputError when `object` is not an object or has a key outside `allowed`, or misses
 // one of `required`. `where` names the object in messages (e.g. "link.json: receiver").

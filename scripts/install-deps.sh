@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libstb-dev
   libpolyclipping-dev libcubature-dev
+  clang libclang-rt-14-dev
   python3-matplotlib python3-numpy
 )
 
