@@ -26,6 +26,16 @@ Patch Patch::make(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
   if (!allFinite(origin) || !allFinite(edgeU) || !allFinite(edgeV)) {
     throw InputError(what + ": every coordinate must be a finite number");
   }
+  // Visibility is traced in single precision (Embree): corners beyond kMaxCoordinate would
+  // overflow there (float's range ends at 3.4e38, and ray lengths are squared).
+  for (const Eigen::Vector3d& corner :
+       {origin, Eigen::Vector3d(origin + edgeU), Eigen::Vector3d(origin + edgeV),
+        Eigen::Vector3d(origin + edgeU + edgeV)}) {
+    if (!(corner.cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      throw InputError(what + ": a corner lies beyond the coordinate limit of 1e15 (" +
+                       formatVector(corner) + ")");
+    }
+  }
   const Eigen::Vector3d cross = edgeU.cross(edgeV);
   const double area = cross.norm();
   const double edgeProduct = edgeU.norm() * edgeV.norm();

@@ -11,6 +11,10 @@
 
 namespace radquad {
 
+// The largest coordinate magnitude of a patch's corners (scene units): visibility is traced in
+// single precision.
+inline constexpr double kMaxCoordinate = 1e15;
+
 struct Patch {
   Eigen::Vector3d origin;
   Eigen::Vector3d edgeU;
@@ -20,7 +24,8 @@ struct Patch {
 
   // Builds a validated patch. `what` names the patch in error messages
   // (for example "source" or "occluders[3]"). Throws InputError when a coordinate is not
-  // finite or the parallelogram is degenerate (zero area, or edges parallel to within 1e-9).
+  // finite, a corner lies beyond kMaxCoordinate, or the parallelogram is degenerate (zero
+  // area, or edges parallel to within 1e-9).
   static Patch make(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
                     const Eigen::Vector3d& edgeV, const std::string& what);
 

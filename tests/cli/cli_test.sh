@@ -44,6 +44,8 @@ expect_error unknown_key "unknown key 'normal'" link "$fixtures/unknown_key.json
 expect_error wrong_length "receiver.origin: expected an array of 3 numbers" link "$fixtures/wrong_length.json" --rule FullGauss
 expect_error non_finite "non_finite.json: non-finite number" link "$fixtures/non_finite.json" --rule FullGauss
 expect_error zero_area "source: degenerate patch" link "$fixtures/zero_area.json" --rule FullGauss
+# Beyond float range Embree cannot trace (found by link_integration_fuzz: an abort in Embree).
+expect_error huge_coordinate "source: a corner lies beyond the coordinate limit of 1e15" link "$fixtures/huge_coordinate.json" --rule FullGauss
 expect_error missing_key "missing key 'source'" link "$fixtures/missing_source.json" --rule FullGauss
 expect_error bad_occluder "occluders[1]: degenerate patch" link "$fixtures/bad_occluders.json" --rule FullGauss
 expect_error crossing_patches "crossing_patches.json: receiver and source cross each other" link "$fixtures/crossing_patches.json" --rule FullGauss --degree 1

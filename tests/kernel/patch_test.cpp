@@ -36,6 +36,10 @@ TEST(Patch, RejectsDegenerateAndNonFinitePatches) {
   expectRejected({0, 0, 0}, {1, 0, 0}, {1, 1e-12, 0}, "degenerate");
   expectRejected({nan, 0, 0}, {1, 0, 0}, {0, 1, 0}, "finite");
   expectRejected({0, 0, 0}, {inf, 0, 0}, {0, 1, 0}, "finite");
+  // Finite in double, beyond what single-precision tracing can hold.
+  expectRejected({0, 1, 1}, {7.8e63, 0, 1}, {5, -2, 0}, "coordinate limit");
+  expectRejected({2e15, 0, 0}, {1, 0, 0}, {0, 1, 0}, "coordinate limit");
+  EXPECT_NO_THROW(Patch::make({-1e14, 0, 0}, {1e14, 0, 0}, {0, 1e14, 0}, "large"));
 }
 
 }  // namespace
