@@ -115,10 +115,11 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const double largest = gold.coupling.cwiseAbs().maxCoeff();
   gold.converged = gold.couplingError.maxCoeff() <= options.tolerance * largest;
   gold.receiverPoints = integrand.points;
+  // Every worker culled the same shaft: read the count from one instead of culling again.
   for (const Worker& worker : integrand.workers) {
     gold.polygonUnions += worker.visibility.statistics().unions;
+    gold.candidateOccluders = worker.visibility.candidateCount();
   }
-  gold.candidateOccluders = ExactVisibility(link).candidateCount();
   return gold;
 }
 
