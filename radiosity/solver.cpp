@@ -16,6 +16,7 @@
 #include "quadrature/random/philox.h"
 #include "radiosity/coupling_store.h"
 #include "radiosity/gauss_tables.h"
+#include "radiosity/kernel_curvature.h"
 #include "radiosity/link_integration.h"
 #include "radiosity/solver_impl.h"
 
@@ -23,7 +24,7 @@ namespace radquad {
 
 Solver::Solver(const Scene& scene, SolverOptions options)
     : scene_(scene), options_(std::move(options)) {
-  impl_ = std::make_unique<Impl>(scene, options_.degree);
+  impl_ = std::make_unique<Impl>(scene, options_.degree, options_.droppedOrders);
   hierarchy_ = std::make_unique<Hierarchy>(scene, options_.degree);
   double largestArea = 0.0, totalArea = 0.0, emittedPower = 0.0;
   for (const ScenePatch& patch : scene.patches) {
@@ -90,13 +91,16 @@ int alongSide(const Patch& element, bool alongU, int points) {
 
 }  // namespace
 
-std::array<int, 4> Solver::chooseRule(const SolverLink& link) const {
+std::array<int, 4> Solver::chooseRule(const SolverLink& link,
+                                      std::uint64_t* checkEvaluations) const {
   const int n = options_.degree + 1;
   // Fixed rules: d+1 points per axis, but 2 at degree 0, where the midpoint rule overestimates
   // peaked kernels (the white furnace at degree 0 came out 9% bright with it, 3% at
   // --bf-eps 0.05; 0.8% with 2 points).
   const int fixed = std::max(n, 2);
   std::array<int, 4> rule = {fixed, fixed, fixed, fixed};
+  const Patch& r = (*hierarchy_)[link.receiver].geometry;
+  const Patch& s = (*hierarchy_)[link.source].geometry;
   if (options_.rules != RuleChoice::kFixed) {
     double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
     AdaptiveGaussInput input = adaptiveInput(link.source, magnitudes);
@@ -109,10 +113,18 @@ std::array<int, 4> Solver::chooseRule(const SolverLink& link) const {
       rule = chooseGaussRulesNoVisibility(input);
     }
   }
-  const Patch& r = (*hierarchy_)[link.receiver].geometry;
-  const Patch& s = (*hierarchy_)[link.source].geometry;
   rule = {alongSide(r, true, rule[0]), alongSide(r, false, rule[1]), alongSide(s, true, rule[2]),
           alongSide(s, false, rule[3])};
+  // The kernel check (kernel_curvature.h): Figure 4 bounds the error of a reduced rule from
+  // the source's radiosity alone; a source axis left with one point is the midpoint rule
+  // along it, biased wherever the kernel bows, so it gets a second point there.
+  if (options_.rules != RuleChoice::kFixed && options_.kernelCurvature > 0.0) {
+    for (int axis = 0; axis < 2; ++axis) {
+      if (rule[2 + axis] != 1) continue;
+      *checkEvaluations += 3;
+      if (midpointRelativeError(r, s, axis == 0) > options_.kernelCurvature) rule[2 + axis] = 2;
+    }
+  }
   if (link.computed) {
     for (int axis = 0; axis < 4; ++axis) rule[axis] = std::max(rule[axis], link.rule[axis]);
   }
@@ -141,6 +153,7 @@ void Solver::updateSourcePoints() {
 void Solver::computeCouplings() {
   const auto start = std::chrono::steady_clock::now();
   updateSourcePoints();
+  const std::uint64_t checksBefore = statistics_.ruleCheckEvaluations;
   std::vector<int> todo;
   std::vector<std::array<int, 4>> rules;
   std::vector<bool> again;
@@ -154,7 +167,7 @@ void Solver::computeCouplings() {
     // source's coefficients rather than zeros.
     if (!link.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
     link.sourcePoints = sourcePoints;
-    const std::array<int, 4> rule = chooseRule(link);
+    const std::array<int, 4> rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
     if (link.computed && rule == link.rule) continue;
     if (link.computed) ++statistics_.recomputations;
     todo.push_back(int(k));
@@ -194,9 +207,13 @@ void Solver::computeCouplings() {
     const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
         kernelLink, rule, impl_->tables, options_.singularDepth,
         Eigen::Map<Eigen::MatrixXd>(whole.data(), functions, functions));
-    // A product rule's coupling keeps the columns of its source points' orders only.
+    // A product rule's coupling keeps the columns of its source points' orders only; a
+    // composite one keeps every column, those of the orders its rule drops zeroed when they
+    // are truncated (source_projection.h).
     if (link.gatherPoints != std::array<int, 2>{n, n}) {
       impl_->projection.compact(link.gatherPoints[0], link.gatherPoints[1], whole.data());
+    } else if (rule[2] < n || rule[3] < n) {
+      impl_->projection.dropOrders(std::min(rule[2], n), std::min(rule[3], n), whole.data());
     }
     std::memcpy(impl_->couplings.data(keptColumns(link), link.slot), whole.data(),
                 sizeof(double) * std::size_t(functions) * std::size_t(keptColumns(link)));
@@ -212,6 +229,7 @@ void Solver::computeCouplings() {
     }
     statistics_.integrationRays += rays[k];
   }
+  statistics_.kernelEvaluations += statistics_.ruleCheckEvaluations - checksBefore;
   statistics_.couplingComputations += todo.size();
   statistics_.couplingSeconds +=
       std::chrono::duration<double>(chosen - start).count() +

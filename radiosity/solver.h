@@ -17,6 +17,7 @@
 #include "quadrature/adaptive_gauss.h"
 #include "radiosity/hierarchy.h"
 #include "radiosity/scene.h"
+#include "radiosity/source_projection.h"
 #include "radiosity/visibility.h"
 
 namespace radquad {
@@ -36,11 +37,23 @@ const char* ruleChoiceName(RuleChoice rules);
 // emitted radiosity scale (see radiosity/README.md, "Adaptive rules").
 inline constexpr double kDefaultErrThres = 0.1;
 
+// The default kernel check of the adaptive rules (radiosity/kernel_curvature.h): a source
+// axis left with one point gets two where the midpoint rule's estimated relative error along
+// it exceeds this.
+inline constexpr double kDefaultKernelCurvature = 0.01;
+
 struct SolverOptions {
   int degree = 0;
   RuleChoice rules = RuleChoice::kFixed;
   // Adaptive rules: ErrThres, relative to the scene's radiosity scale (below).
   double errThres = kDefaultErrThres;
+  // Adaptive rules: a one-point source axis whose estimated midpoint error (relative) exceeds
+  // this gets two points (radiosity/kernel_curvature.h); 0 turns the check off, leaving
+  // Figure 4's choice alone.
+  double kernelCurvature = kDefaultKernelCurvature;
+  // Adaptive rules: how the source orders a reduced rule does not keep are gathered
+  // (radiosity/source_projection.h). Fixed rules keep every order; this changes nothing there.
+  DroppedOrders droppedOrders = DroppedOrders::kTruncated;
   // BF oracle: refine a link when F_estimate * B_source (* partialFactor if partial) exceeds
   // bfEpsilon times the scene's radiosity scale, its emitted power over its total area
   // (sum_i max_c E_i,c A_i / sum_i A_i: the mean radiosity before any reflection) ...
@@ -121,6 +134,8 @@ struct SolveStatistics {
   std::uint64_t couplingComputations = 0;      // links integrated (first time or again)
   std::uint64_t recomputations = 0;            // links integrated again with a new rule
   std::uint64_t recomputationEvaluations = 0;  // kernel evaluations of those (included above)
+  // Unoccluded kernel evaluations of the adaptive rules' kernel check (included above).
+  std::uint64_t ruleCheckEvaluations = 0;
   std::uint64_t classificationRays = 0;
   std::uint64_t integrationRays = 0;
   std::size_t unoccludedLinks = 0, partialLinks = 0, occludedLinks = 0;  // final, by class
@@ -174,7 +189,8 @@ class Solver {
   bool oracleSaysRefine(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
   AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
-  std::array<int, 4> chooseRule(const SolverLink& link) const;
+  // The link's rule; adds the kernel check's evaluations to *checkEvaluations.
+  std::array<int, 4> chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
   void updateSourcePoints();
   void computeCouplings();
   void projectSources();

@@ -17,11 +17,11 @@
 namespace radquad {
 
 struct Solver::Impl {
-  Impl(const Scene& scene, int degree)
+  Impl(const Scene& scene, int degree, DroppedOrders dropped)
       : tables(degree),
         classifier(scene, occluders),
         couplings((degree + 1) * (degree + 1)),
-        projection(degree) {
+        projection(degree, dropped) {
     for (const ScenePatch& patch : scene.patches) occluders.addParallelogram(patch.patch);
     occluders.commit();
   }

@@ -8,14 +8,23 @@
 
 namespace radquad {
 
-SourceProjection::SourceProjection(int degree) : degree_(degree) {
+const char* droppedOrdersName(DroppedOrders orders) {
+  return orders == DroppedOrders::kTruncated ? "truncated" : "aliased";
+}
+
+SourceProjection::SourceProjection(int degree, DroppedOrders dropped)
+    : degree_(degree), dropped_(dropped) {
   validateBasisDegree(degree);
   const int orders = degree + 1;
-  aliasing_.resize(std::size_t(orders));
+  matrices_.resize(std::size_t(orders));
   double phi[kMaxBasisDegree + 1];
   for (int points = 1; points <= orders; ++points) {
-    std::vector<double>& m = aliasing_[std::size_t(points - 1)];
+    std::vector<double>& m = matrices_[std::size_t(points - 1)];
     m.assign(std::size_t(points * orders), 0.0);
+    if (dropped == DroppedOrders::kTruncated) {
+      for (int p = 0; p < points; ++p) m[std::size_t(p * orders + p)] = 1.0;
+      continue;
+    }
     const GaussLegendreRule& rule = gaussLegendreUnit(points);
     for (int i = 0; i < points; ++i) {
       shiftedLegendreValues(degree, rule.nodes[std::size_t(i)], phi);
@@ -28,9 +37,9 @@ SourceProjection::SourceProjection(int degree) : degree_(degree) {
   }
 }
 
-double SourceProjection::aliasing(int points, int p, int pPrime) const {
+double SourceProjection::matrix(int points, int p, int pPrime) const {
   assert(points >= 1 && points <= degree_ + 1 && p < points && pPrime <= degree_);
-  return aliasing_[std::size_t(points - 1)][std::size_t(p * (degree_ + 1) + pPrime)];
+  return matrices_[std::size_t(points - 1)][std::size_t(p * (degree_ + 1) + pPrime)];
 }
 
 void SourceProjection::project(int pointsU, int pointsV, const double* radiosity,
@@ -39,8 +48,8 @@ void SourceProjection::project(int pointsU, int pointsV, const double* radiosity
   const std::size_t functions = std::size_t(orders * orders);
   const std::size_t rows = std::size_t(pointsU * pointsV);
   assert(pointsU >= 1 && pointsU <= orders && pointsV >= 1 && pointsV <= orders);
-  const double* mu = aliasing_[std::size_t(pointsU - 1)].data();
-  const double* mv = aliasing_[std::size_t(pointsV - 1)].data();
+  const double* mu = matrices_[std::size_t(pointsU - 1)].data();
+  const double* mv = matrices_[std::size_t(pointsV - 1)].data();
   for (int c = 0; c < 3; ++c) {
     const double* b = radiosity + std::size_t(c) * functions;
     // Along u first: t[p][j] = sum_i M_u[p][i] B[i][j], then along v.
@@ -75,6 +84,22 @@ void SourceProjection::compact(int pointsU, int pointsV, double* coupling) const
         std::memcpy(coupling + to * functions, coupling + from * functions,
                     functions * sizeof(double));
       }
+    }
+  }
+}
+
+}  // namespace radquad
+
+namespace radquad {
+
+void SourceProjection::dropOrders(int pointsU, int pointsV, double* coupling) const {
+  if (dropped_ == DroppedOrders::kAliased) return;
+  const int orders = degree_ + 1;
+  const std::size_t functions = std::size_t(orders * orders);
+  for (int p = 0; p < orders; ++p) {
+    for (int q = 0; q < orders; ++q) {
+      if (p < pointsU && q < pointsV) continue;
+      std::memset(coupling + std::size_t(p * orders + q) * functions, 0, functions * sizeof(double));
     }
   }
 }

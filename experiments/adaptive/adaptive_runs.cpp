@@ -235,6 +235,8 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
             {"sweep_scene", options.sweepScene},
             {"sweep_degree", options.sweepDegree},
             {"sweep_bf_eps", options.sweepBfEpsilon},
+            {"kernel_curvature", SolverOptions{}.kernelCurvature},
+            {"dropped_orders", droppedOrdersName(SolverOptions{}.droppedOrders)},
             {"solver_defaults_otherwise", true},
             {"timing_repeats", options.timingRepeats},
             {"timing", "table times are the fastest of timing_repeats interleaved solves "

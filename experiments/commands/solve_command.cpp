@@ -32,6 +32,8 @@ struct SolveCommandOptions {
   int degree = 0;
   std::string rules = "fixed";
   double threshold = kDefaultErrThres;
+  double kernelCurvature = kDefaultKernelCurvature;
+  std::string droppedOrders = droppedOrdersName(DroppedOrders::kTruncated);
   bool compare = false;
   std::string renderPath;
   double bfEpsilon = SolverOptions{}.bfEpsilon;
@@ -69,6 +71,16 @@ void runSolve(const SolveCommandOptions& command) {
   if (!(command.threshold >= 0.0) || !std::isfinite(command.threshold)) {
     throw InputError("--threshold: must be a finite number >= 0");
   }
+  if (!(command.kernelCurvature >= 0.0) || !std::isfinite(command.kernelCurvature)) {
+    throw InputError("--kernel-curvature: must be a finite number >= 0 (0: no kernel check)");
+  }
+  DroppedOrders droppedOrders = DroppedOrders::kTruncated;
+  if (command.droppedOrders == droppedOrdersName(DroppedOrders::kAliased)) {
+    droppedOrders = DroppedOrders::kAliased;
+  } else if (command.droppedOrders != droppedOrdersName(DroppedOrders::kTruncated)) {
+    throw InputError("--dropped-orders " + command.droppedOrders +
+                     ": unknown treatment (valid: truncated, aliased)");
+  }
   if (!(command.bfEpsilon > 0.0)) throw InputError("--bf-eps: must be > 0");
   if (!(command.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
   if (!(command.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
@@ -91,6 +103,8 @@ void runSolve(const SolveCommandOptions& command) {
   options.degree = command.degree;
   options.rules = rules;
   options.errThres = command.threshold;
+  options.kernelCurvature = command.kernelCurvature;
+  options.droppedOrders = droppedOrders;
   options.bfEpsilon = command.bfEpsilon;
   options.minArea = command.minArea;
   options.partialFactor = command.partialFactor;
@@ -133,6 +147,8 @@ void runSolve(const SolveCommandOptions& command) {
        {{"degree", command.degree},
         {"rules", command.rules},
         {"threshold", options.errThres},
+        {"kernel_curvature", options.kernelCurvature},
+        {"dropped_orders", droppedOrdersName(options.droppedOrders)},
         {"bf_eps", options.bfEpsilon},
         {"min_area", solver.minArea()},
         {"partial_factor", options.partialFactor},
@@ -146,6 +162,7 @@ void runSolve(const SolveCommandOptions& command) {
       {"coupling_computations", statistics.couplingComputations},
       {"recomputations", statistics.recomputations},
       {"recomputation_kernel_evaluations", statistics.recomputationEvaluations},
+      {"rule_check_kernel_evaluations", statistics.ruleCheckEvaluations},
       {"links",
        {{"unoccluded", statistics.unoccludedLinks},
         {"partial", statistics.partialLinks},
@@ -236,6 +253,17 @@ void addSolveCommand(CLI::App& app) {
       ->add_option("--threshold", options->threshold,
                    "ErrThres of the adaptive rules, as a fraction of the scene's emitted "
                    "radiosity (emitted power over total area)")
+      ->capture_default_str();
+  command
+      ->add_option("--kernel-curvature", options->kernelCurvature,
+                   "Adaptive rules: a one-point source axis whose estimated midpoint error "
+                   "(relative) exceeds this gets two points; 0: Figure 4's choice alone")
+      ->capture_default_str();
+  command
+      ->add_option("--dropped-orders", options->droppedOrders,
+                   "Adaptive rules: source orders a reduced rule does not keep are truncated "
+                   "(dropped) or aliased (gathered through the rule's points, the report's "
+                   "reading)")
       ->capture_default_str();
   command->add_flag("--compare", options->compare,
                     "Also solve with fixed rules and report the relative L2 difference");

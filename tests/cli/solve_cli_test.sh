@@ -26,6 +26,8 @@ expect_status 2 "degree out of range" "--degree" solve cornell --degree 4
 expect_status 2 "unknown rule choice" "--rules" solve cornell --rules magic
 expect_status 2 "no iterations" "--max-iterations" solve cornell --max-iterations 0
 expect_status 2 "negative threads" "--threads" solve cornell --threads -1
+expect_status 2 "unknown dropped-order treatment" "--dropped-orders alias: unknown" solve cornell --rules adaptive --dropped-orders alias
+expect_status 2 "negative kernel curvature" "--kernel-curvature" solve cornell --rules adaptive --kernel-curvature -1
 printf '{"patches": [{%s, "reflectance": [0.5,0.5,0.5], "emission": [1,1,1]}]}' "$square" >"$work/lamp.json"
 cp "$work/lamp.json" "$work/lamp_copy.json"
 expect_status 2 "render over the scene" "is the input" solve "$work/lamp_copy.json" --render "$work/lamp_copy.json"
