@@ -120,6 +120,7 @@ LinkDescription parseLink(const nlohmann::json& value, const std::string& where)
   checkKeys(value, where, {"receiver", "source", "occluders"}, {"receiver", "source"});
   LinkDescription link{parsePatch(value["receiver"], where + ": receiver"),
                        parsePatch(value["source"], where + ": source"),
+                       {},
                        {}};
   if (const auto crossing = patchesInterpenetrate(link.receiver, link.source)) {
     throw InputError(where + ": receiver and source " + *crossing +
@@ -129,8 +130,29 @@ LinkDescription parseLink(const nlohmann::json& value, const std::string& where)
     const auto& occluders = value["occluders"];
     if (!occluders.is_array()) throw InputError(where + ": occluders: expected an array");
     for (std::size_t k = 0; k < occluders.size(); ++k) {
-      link.occluders.push_back(
-          parsePatch(occluders[k], where + ": occluders[" + std::to_string(k) + "]"));
+      const std::string name = where + ": occluders[" + std::to_string(k) + "]";
+      if (occluders[k].is_object() && occluders[k].contains("triangle")) {
+        checkKeys(occluders[k], name, {"triangle"}, {"triangle"});
+        const auto& corners = occluders[k]["triangle"];
+        if (!corners.is_array() || corners.size() != 3) {
+          throw InputError(name + ".triangle: expected an array of 3 points");
+        }
+        std::array<Eigen::Vector3d, 3> triangle;
+        for (int c = 0; c < 3; ++c) {
+          triangle[std::size_t(c)] =
+              finiteVector3(corners[std::size_t(c)], name + ".triangle[" + std::to_string(c) + "]");
+          if (triangle[std::size_t(c)].cwiseAbs().maxCoeff() > kMaxCoordinate) {
+            throw InputError(name + ".triangle[" + std::to_string(c) +
+                             "]: a coordinate beyond 1e15 (single-precision ray tracing)");
+          }
+        }
+        if (!((triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).norm() > 0.0)) {
+          throw InputError(name + ".triangle: degenerate (zero area)");
+        }
+        link.triangles.push_back(triangle);
+        continue;
+      }
+      link.occluders.push_back(parsePatch(occluders[k], name));
     }
   }
   return link;
@@ -144,6 +166,16 @@ SceneLink buildSceneLink(const LinkDescription& description) {
   SceneLink built;
   built.scene = std::make_unique<OccluderScene>();
   for (const Patch& occluder : description.occluders) built.scene->addParallelogram(occluder);
+  if (!description.triangles.empty()) {
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<std::array<std::uint32_t, 3>> indices;
+    for (const auto& triangle : description.triangles) {
+      const std::uint32_t first = std::uint32_t(vertices.size());
+      vertices.insert(vertices.end(), triangle.begin(), triangle.end());
+      indices.push_back({first, first + 1, first + 2});
+    }
+    built.scene->addTriangleMesh(vertices, indices);
+  }
   built.scene->commit();
   built.link = Link{description.receiver, description.source, built.scene.get()};
   return built;
@@ -154,6 +186,20 @@ nlohmann::json patchToJson(const Patch& patch) {
   return {{"origin", vector(patch.origin)},
           {"edge_u", vector(patch.edgeU)},
           {"edge_v", vector(patch.edgeV)}};
+}
+
+nlohmann::json occluderToJson(const std::vector<Eigen::Vector3d>& polygon) {
+  auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json{v.x(), v.y(), v.z()}; };
+  if (polygon.size() == 4) {
+    return {{"origin", vector(polygon[0])},
+            {"edge_u", vector(polygon[1] - polygon[0])},
+            {"edge_v", vector(polygon[3] - polygon[0])}};
+  }
+  if (polygon.size() != 3) {
+    throw std::logic_error("occluderToJson: a polygon of " + std::to_string(polygon.size()) +
+                           " vertices");
+  }
+  return {{"triangle", {vector(polygon[0]), vector(polygon[1]), vector(polygon[2])}}};
 }
 
 nlohmann::json matrixToJson(const Eigen::MatrixXd& matrix) {

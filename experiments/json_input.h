@@ -3,6 +3,8 @@
 // names the file and the offending key.
 #pragma once
 
+#include <array>
+
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
@@ -45,7 +47,8 @@ Patch parsePatch(const nlohmann::json& value, const std::string& where,
 struct LinkDescription {
   Patch receiver;
   Patch source;
-  std::vector<Patch> occluders;
+  std::vector<Patch> occluders;  // parallelograms {origin, edge_u, edge_v}
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles;  // occluders {"triangle": [a, b, c]}
 };
 LinkDescription parseLink(const nlohmann::json& value, const std::string& where);
 LinkDescription readLinkFile(const std::filesystem::path& path);
@@ -58,6 +61,9 @@ struct SceneLink {
 SceneLink buildSceneLink(const LinkDescription& description);
 
 nlohmann::json patchToJson(const Patch& patch);
+// An occluder polygon as a link file writes it: a parallelogram (4 corners in Patch::corners
+// order) as {origin, edge_u, edge_v}, a triangle as {"triangle": [a, b, c]}.
+nlohmann::json occluderToJson(const std::vector<Eigen::Vector3d>& polygon);
 nlohmann::json matrixToJson(const Eigen::MatrixXd& matrix);
 
 }  // namespace radquad

@@ -1,11 +1,13 @@
-// `radquad study CONFIG.json --out FILE.json [--gold] [--quiet]`: scores the config's rules on
+// `radquad study CONFIG.json --out FILE.json [--links-out FILE.jsonl] [--gold] [--quiet]`: scores the config's rules on
 // its generated links and writes the error table of Figure 1 or 2 (README.md, "The study").
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/study/study_output.h"
+#include "kernel/input_error.h"
 
 namespace radquad {
 namespace {
@@ -13,6 +15,7 @@ namespace {
 struct StudyCommandOptions {
   std::string configPath;
   std::string outPath;
+  std::string linksOutPath;
   bool gold = false;
   bool quiet = false;
 };
@@ -27,13 +30,25 @@ void addStudyCommand(CLI::App& app) {
       ->required();
   command->add_option("--out", options->outPath, "Where to write the table (atomically)")
       ->required();
+  command->add_option("--links-out", options->linksOutPath,
+                      "Also write the per-link table: one JSON object per line, with the link's "
+                      "geometry and every coupling (atomically)");
   command->add_flag("--gold", options->gold,
                     "Also score every rule and the reference against the gold reference");
   command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
   command->callback([options] {
     checkOutputPath(options->outPath, "--out", {options->configPath});
-    runStudyToFile(options->configPath, options->outPath,
-                   StudyOptions{options->gold, !options->quiet});
+    if (!options->linksOutPath.empty()) {
+      checkOutputPath(options->linksOutPath, "--links-out", {options->configPath});
+      if (std::filesystem::weakly_canonical(options->linksOutPath) ==
+          std::filesystem::weakly_canonical(options->outPath)) {
+        throw InputError("--links-out " + options->linksOutPath + ": is also --out");
+      }
+    }
+    StudyOptions study;
+    study.gold = options->gold;
+    study.progress = !options->quiet;
+    runStudyToFile(options->configPath, options->outPath, study, options->linksOutPath);
   });
 }
 

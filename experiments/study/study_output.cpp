@@ -61,9 +61,11 @@ void runPlotScript(const std::string& python, const std::string& script,
   }
 }
 
-nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options) {
+nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options,
+                             std::string* linkLines) {
   const auto start = std::chrono::steady_clock::now();
   const StudyRun run = runStudy(config, options);
+  if (linkLines != nullptr) *linkLines = linkTableLines(config, run);
   nlohmann::json table = studyTable(config, options, run);
   table["git_commit"] = gitCommit();
   table["elapsed_seconds"] =
@@ -72,9 +74,13 @@ nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& opti
 }
 
 void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
-                    const StudyOptions& options) {
+                    const StudyOptions& options, const std::filesystem::path& linksOutPath) {
   const StudyConfig config = readStudyConfig(configPath);
-  nlohmann::json table = runStudyTable(config, options);
+  StudyOptions runOptions = options;
+  runOptions.keepDetails = !linksOutPath.empty();
+  std::string linkLines;
+  nlohmann::json table =
+      runStudyTable(config, runOptions, linksOutPath.empty() ? nullptr : &linkLines);
   // Relative to the source tree when inside it, so committed tables name no machine's paths.
   const auto absolute = std::filesystem::weakly_canonical(configPath);
   const auto relative =
@@ -82,6 +88,7 @@ void runStudyToFile(const std::filesystem::path& configPath, const std::filesyst
   const bool inside = !relative.empty() && *relative.begin() != "..";
   table["options"]["config_path"] = inside ? relative.string() : configPath.string();
   writeFileAtomically(outPath, table.dump(2) + "\n");
+  if (!linksOutPath.empty()) writeFileAtomically(linksOutPath, linkLines);
   if (options.progress) {
     std::cerr << "radquad study: wrote " << outPath.string() << " in "
               << table["elapsed_seconds"].get<double>() << " s\n";

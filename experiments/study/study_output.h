@@ -26,10 +26,14 @@ void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet);
 
-nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options);
+// The stamped table; with `linkLines`, the per-link table too (options.keepDetails must be
+// set).
+nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options,
+                             std::string* linkLines = nullptr);
 
-// Runs the config at `configPath` and writes the table to `outPath` (atomically).
+// Runs the config at `configPath` and writes the table to `outPath` (atomically) and, when
+// `linksOutPath` is not empty, the per-link table there (atomically, after the table).
 void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
-                    const StudyOptions& options);
+                    const StudyOptions& options, const std::filesystem::path& linksOutPath = {});
 
 }  // namespace radquad

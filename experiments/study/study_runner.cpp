@@ -28,6 +28,7 @@ struct Scorers {
   ReferenceEstimator reference;
   bool gold = false;
   const SceneLinkPool* pool = nullptr;  // scene-derived links, or null: generated ones
+  bool keepDetails = false;
 };
 
 // One candidate's geometry: generated from its seed, or taken from the scene's links.
@@ -145,22 +146,41 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     record.referenceRelativeErrorVsGold = relativeError(K, G);
     record.referenceL1BoundVsGold = l1ErrorBound(K - G, area);
   }
+  std::shared_ptr<LinkDetail> detail;
+  if (scorers.keepDetails) {
+    detail = std::make_shared<LinkDetail>();
+    detail->receiver = generated.receiver;
+    detail->source = generated.source;
+    if (generated.scene != nullptr) detail->occluders = generated.scene->polygons();
+    detail->reference = K;
+    detail->referenceStandardError = reference.standardError;
+    if (scorers.gold) {
+      detail->gold = gold.coupling;
+      detail->goldError = gold.couplingError;
+    }
+  }
   LinkIntegral estimate;
   for (std::size_t r = 0; r < scorers.rules.size(); ++r) {
     const int trials = scorers.trials[r];
     const double share = 1.0 / trials;
     double relative = 0.0, relativeGold = 0.0;
     std::vector<double> bound, boundGold;
+    EntrywiseMoments moments;
     for (int t = 0; t < trials; ++t) {
       scorers.rules[r].integrate(link,
                                  deriveSeed(config.seed, {classIndex, index, 3, std::uint64_t(t)}),
                                  accumulator, estimate);
+      if (detail) moments.add(estimate.coupling);
       relative += share * relativeError(estimate.coupling, K);
       addInto(bound, l1ErrorBound(estimate.coupling - K, area), share);
       if (scorers.gold) {
         relativeGold += share * relativeError(estimate.coupling, gold.coupling);
         addInto(boundGold, l1ErrorBound(estimate.coupling - gold.coupling, area), share);
       }
+    }
+    if (detail) {
+      detail->ruleMean.push_back(moments.mean());
+      detail->ruleDeviation.push_back(moments.sampleDeviation());
     }
     record.relativeError.push_back(relative);
     record.l1Bound.push_back(std::move(bound));
@@ -169,6 +189,7 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
       record.l1BoundVsGold.push_back(std::move(boundGold));
     }
   }
+  record.detail = std::move(detail);
 }
 
 ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const Scorers& scorers,
@@ -250,6 +271,7 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
   const int degree = config.degree();
   Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), options.gold};
+  scorers.keepDetails = options.keepDetails;
   StudyRun run;
   std::unique_ptr<SceneLinkPool> pool;
   if (config.sceneLinks) {

@@ -9,18 +9,35 @@
 // suite, so the output does not depend on the thread count.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "kernel/patch.h"
 
 #include "experiments/study/study_config.h"
 
 namespace radquad {
 
 struct StudyOptions {
-  bool gold = false;      // also score against the gold reference
-  bool progress = false;  // progress lines on stderr
+  bool gold = false;        // also score against the gold reference
+  bool progress = false;    // progress lines on stderr
+  bool keepDetails = false;  // keep every link's geometry and couplings (LinkDetail)
+};
+
+// Everything about one scored link that the per-link table (`--links-out`) writes: its
+// geometry and every coupling it was scored with.
+struct LinkDetail {
+  Patch receiver, source;
+  std::vector<std::vector<Eigen::Vector3d>> occluders;  // polygons (triangles for soups)
+  Eigen::MatrixXd reference, referenceStandardError;
+  Eigen::MatrixXd gold, goldError;  // empty without gold
+  // Per rule: the coupling (the mean over its trials for a random rule) and the entrywise
+  // sample standard deviation over the trials (zeros for one trial).
+  std::vector<Eigen::MatrixXd> ruleMean, ruleDeviation;
 };
 
 // The scores of one accepted link. Random rules: means over the trials.
@@ -45,6 +62,7 @@ struct LinkRecord {
   double goldMaxRelativeError = 0.0;
   bool goldConverged = true;
   std::vector<double> referenceL1BoundVsGold;
+  std::shared_ptr<const LinkDetail> detail;  // with StudyOptions::keepDetails
 };
 
 struct ClassRun {
@@ -82,5 +100,9 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options);
 // `elapsed_seconds`, which the caller adds.
 nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options,
                           const StudyRun& run);
+
+// The per-link table: one JSON object per line for every scored link (README.md, "Per-link
+// tables"); needs a run with StudyOptions::keepDetails.
+std::string linkTableLines(const StudyConfig& config, const StudyRun& run);
 
 }  // namespace radquad

@@ -1,7 +1,10 @@
 // The error tables of Figures 1 and 2 (field meanings: README.md, "The study").
 #include <cmath>
 #include <map>
+#include <stdexcept>
+#include <string>
 
+#include "experiments/json_input.h"
 #include "experiments/study/reference_estimate.h"
 #include "experiments/study/study_metrics.h"
 #include "experiments/study/study_runner.h"
@@ -33,11 +36,14 @@ nlohmann::json boundTable(const std::vector<LinkRecord>& links, const auto& pick
     }
     totals.push_back(total);
   }
-  std::vector<double> means, sems;
+  std::vector<double> means, sems, medians, p90s, maxima;
   for (const auto& values : perFunction) {
     const SummaryStatistics statistics = summarize(values);
     means.push_back(statistics.mean);
     sems.push_back(statistics.sem);
+    medians.push_back(statistics.median);
+    p90s.push_back(statistics.p90);
+    maxima.push_back(statistics.max);
   }
   double total = 0.0;
   for (const double mean : means) total += mean;
@@ -46,7 +52,11 @@ nlohmann::json boundTable(const std::vector<LinkRecord>& links, const auto& pick
           {"total", total},
           {"per_source_function_sem", sems},
           {"total_sem", totalStatistics.sem},
+          {"per_source_function_median", medians},
+          {"per_source_function_p90", p90s},
+          {"per_source_function_max", maxima},
           {"total_median", totalStatistics.median},
+          {"total_p90", totalStatistics.p90},
           {"total_max", totalStatistics.max}};
 }
 
@@ -107,15 +117,17 @@ nlohmann::json groupScores(const std::vector<const LinkRecord*>& group, std::siz
   nlohmann::json out = {{"links", group.size()}};
   if (group.empty()) return out;
   auto scores = [&](const auto& pick) {
-    std::vector<double> means, medians;
+    std::vector<double> means, medians, p90s, maxima;
     for (std::size_t r = 0; r < rules; ++r) {
       std::vector<double> values;
       for (const LinkRecord* link : group) values.push_back(pick(*link, r));
       const SummaryStatistics statistics = summarize(values);
       means.push_back(statistics.mean);
       medians.push_back(statistics.median);
+      p90s.push_back(statistics.p90);
+      maxima.push_back(statistics.max);
     }
-    return nlohmann::json{{"mean", means}, {"median", medians}};
+    return nlohmann::json{{"mean", means}, {"median", medians}, {"p90", p90s}, {"max", maxima}};
   };
   out["relative_error"] = scores([](const LinkRecord& l, std::size_t r) { return l.relativeError[r]; });
   if (fig2) {
@@ -309,6 +321,51 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
     table["classes"] = classes;
   }
   return table;
+}
+
+std::string linkTableLines(const StudyConfig& config, const StudyRun& run) {
+  std::string out;
+  for (const ClassRun& classRun : run.classes) {
+    for (const LinkRecord& link : classRun.links) {
+      if (!link.detail) throw std::logic_error("linkTableLines: the run kept no link details");
+      const LinkDetail& detail = *link.detail;
+      nlohmann::json occluders = nlohmann::json::array();
+      for (const auto& polygon : detail.occluders) occluders.push_back(occluderToJson(polygon));
+      nlohmann::json rules = nlohmann::json::array();
+      for (std::size_t r = 0; r < run.rules.size(); ++r) {
+        nlohmann::json rule = {{"name", run.rules[r].name},
+                               {"trials", run.rules[r].trials},
+                               {"coupling", matrixToJson(detail.ruleMean[r])}};
+        if (run.rules[r].random) {
+          rule["standard_deviation"] = matrixToJson(detail.ruleDeviation[r]);
+        }
+        rules.push_back(std::move(rule));
+      }
+      nlohmann::json line = {{"class", studyClassName(classRun.linkClass)},
+                             {"candidate", link.candidate},
+                             {"degree", config.degree()},
+                             {"occluder", occluderKindName(link.occluderKind)},
+                             {"orientation", orientationName(link.orientation)},
+                             {"distance_factor", link.distanceFactor},
+                             {"visible_fraction", link.visibleFraction},
+                             {"receiver", patchToJson(detail.receiver)},
+                             {"source", patchToJson(detail.source)},
+                             {"occluders", std::move(occluders)},
+                             {"reference",
+                              {{"name", run.referenceName},
+                               {"coupling", matrixToJson(detail.reference)},
+                               {"standard_error", matrixToJson(detail.referenceStandardError)}}},
+                             {"rules", std::move(rules)}};
+      if (detail.gold.size() > 0) {
+        line["gold"] = {{"method", link.goldMethod},
+                        {"converged", link.goldConverged},
+                        {"coupling", matrixToJson(detail.gold)},
+                        {"error", matrixToJson(detail.goldError)}};
+      }
+      out += line.dump() + "\n";
+    }
+  }
+  return out;
 }
 
 }  // namespace radquad

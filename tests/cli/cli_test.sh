@@ -144,6 +144,27 @@ PY
 check reference_json $?
 expect_error reference_bad_file "malformed.json: malformed JSON" reference "$fixtures/malformed.json"
 
+# A triangle occluder (link files accept {"triangle": [a, b, c]} beside parallelograms): a
+# huge triangle in the mid-plane z = 1/2 with an edge along x = 1/2 blocks every ray whose
+# midpoint has x < 1/2, exactly half of the opposed unit squares' form factor by symmetry
+# (x -> 1 - x); the exact gold against half of Howell's closed form (C-11, X = Y = 1).
+"$radquad" reference "$fixtures/triangle_link.json" --gold >"$scratch/triangle.json" 2>/dev/null
+check triangle_status $?
+"$python" - "$scratch/triangle.json" <<'PY'
+import json, math, sys
+gold = json.load(open(sys.argv[1]))["gold"]
+x = y = 1.0
+closed = 2 / (math.pi * x * y) * (
+    math.log(math.sqrt((1 + x * x) * (1 + y * y) / (1 + x * x + y * y)))
+    + x * math.sqrt(1 + y * y) * math.atan(x / math.sqrt(1 + y * y))
+    + y * math.sqrt(1 + x * x) * math.atan(y / math.sqrt(1 + x * x))
+    - x * math.atan(x) - y * math.atan(y))
+assert gold["converged"], gold
+assert abs(gold["form_factor"] - closed / 2) < 1e-7 * closed, (gold["form_factor"], closed / 2)
+PY
+check triangle_half_blocked $?
+expect_error bad_triangle "occluders[0].triangle: expected an array of 3 points" link "$fixtures/bad_triangle.json" --rule FullGauss
+
 for command in "" link rules reference; do
   "$radquad" $command --help >/dev/null 2>&1
   check "help_$command" $?

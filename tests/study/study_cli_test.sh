@@ -30,5 +30,22 @@ else
     grep -q -- "$field" "$work/good.out" || { echo "FAIL good: no $field"; failures=$((failures + 1)); }
   done
 fi
+# The per-link table: one JSON line per scored link (4 here), written beside the table.
+if ! "$radquad" study "$work/good.json" --out "$work/links.out" --links-out "$work/links.jsonl" --quiet; then
+  echo "FAIL links-out: nonzero exit status"; failures=$((failures + 1))
+else
+  lines=$(wc -l < "$work/links.jsonl")
+  [[ $lines -eq 4 ]] || { echo "FAIL links-out: $lines lines, expected 4"; failures=$((failures + 1)); }
+  for field in '"receiver"' '"source"' '"occluders"' '"reference"' '"rules"' '"standard_deviation"'; do
+    grep -q -- "$field" "$work/links.jsonl" || { echo "FAIL links-out: no $field"; failures=$((failures + 1)); }
+  done
+fi
+"$radquad" study "$work/good.json" --out "$work/same.out" --links-out "$work/same.out" --quiet 2> "$work/same.err"
+status=$?
+if [[ $status -ne 2 ]] || ! grep -q -- "--links-out" "$work/same.err"; then
+  echo "FAIL links-out over --out: exit status $status"; cat "$work/same.err"; failures=$((failures + 1))
+fi
+[[ -e "$work/same.out" ]] && { echo "FAIL links-out over --out: wrote a file"; failures=$((failures + 1)); }
+
 [[ $failures -eq 0 ]] && echo "study CLI: all checks passed"
 exit $((failures > 0))
