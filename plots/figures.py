@@ -5,7 +5,12 @@ Figure 1: one bar per rule, the mean relative error of K[0][0] on partially visi
 (constant bases), log scale, error bars one standard error of the mean over links.
 Figure 2: per rule, two stacked bars (unoccluded left, partial right) of the mean L1 error
 bound per unit receiver area, stacked by source basis function, constant at the bottom,
-as in the report's Figure 2.
+as in the report's Figure 2; beside it, the scale-free relative Frobenius error of K (mean
+and standard error over links), which compares the classes fairly where U_b follows each
+link's size of K.
+Breakdowns (<stem>-breakdown): every rule's mean error over FullGauss's on the same links,
+with its 95% interval, by occluder kind and by distance band (centre distance over the
+longest side); below 1 the rule beats FullGauss there.
 Tables scored against the gold (`--gold`) are drawn against the gold, with the paper's
 10,000-sample reference as one more bar (its own error against the gold). Tables of
 scene-derived links (fig1-scene.json, fig2-scene.json, when present) are drawn the same way.
@@ -99,7 +104,8 @@ def figure2(table, plots, stem):
     functions = len(classes[order[0]]["rules"][0][key]["per_source_function"])
     side = int(round(functions ** 0.5))
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.95, functions))
-    figure, axes = plt.subplots(figsize=(9.0, 4.6))
+    figure, (axes, scale_free) = plt.subplots(1, 2, figsize=(14.0, 4.6),
+                                              gridspec_kw={"width_ratios": [1.9, 1.0], "wspace": 0.25})
     width = 0.38
     for offset, class_name in enumerate(order):
         rules = {rule["name"]: rule for rule in classes[class_name]["rules"]}
@@ -116,13 +122,76 @@ def figure2(table, plots, stem):
     counts = ", ".join(f"{c} ({classes[c]['links']} links)" for c in order)
     axes.set_title(f"Figure 2: quadratic bases; left bars {order[0]}, right (hatched) {order[-1]}; {counts}"
                    f"{scene_source(table)}", fontsize=9)
-    axes.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), title="source function", title_fontsize=7)
+    axes.legend(fontsize=6, loc="upper left", ncol=3, title="source function", title_fontsize=7)
     floor = ", ".join(f"{c} {classes[c]['reference']['l1_standard_error']['total']:.2g}" for c in order
                       if "l1_standard_error" in classes[c]["reference"])
     note = reference_note(table) + (f"; its own L1 standard error (total): {floor}" if floor else "")
     axes.text(0.0, -0.14, note, transform=axes.transAxes, fontsize=7)
     axes.grid(axis="y", alpha=0.3)
+    frobenius = "relative_frobenius_error_vs_gold" if gold else "relative_frobenius_error"
+    for offset, class_name in enumerate(order):
+        rules = {rule["name"]: rule for rule in classes[class_name]["rules"] if frobenius in rule}
+        shown = [n for n in names if n in rules]
+        positions = np.array([names.index(n) for n in shown]) + (offset - 0.5 * (len(order) - 1)) * (width + 0.02)
+        scale_free.bar(positions, [rules[n][frobenius]["mean"] for n in shown], width,
+                       yerr=[rules[n][frobenius]["sem"] for n in shown], capsize=2, ecolor="black",
+                       color="#4c72b0" if class_name == "unoccluded" else "#dd8452", label=class_name)
+    scale_free.set_yscale("log")
+    scale_free.set_xticks(np.arange(len(names)), names, fontsize=7, rotation=45, ha="right")
+    scale_free.set_ylabel("mean relative Frobenius error of K" + (" (against gold)" if gold else ""), fontsize=8)
+    scale_free.set_title("scale-free: ||K~ - K||_F / ||K||_F", fontsize=9)
+    scale_free.legend(fontsize=7)
+    scale_free.grid(axis="y", which="both", alpha=0.3)
     save(figure, plots, stem)
+    plt.close(figure)
+
+
+def breakdown_figure(table, plots, stem):
+    """Paired ratios to FullGauss with 95% intervals, by occluder kind and by distance band."""
+    if "classes" in table:
+        groups = [(f"{c}: ", table["classes"][c]) for c in ("unoccluded", "partial") if c in table["classes"]]
+        metric = "relative_frobenius_error"
+    else:
+        groups = [("", table)]
+        metric = "relative_error"
+    names = [rule["name"] for rule in (groups[0][1]["rules"])]
+    panels = []
+    for prefix, part in groups:
+        occluders = part["breakdown"]["by_occluder"]
+        panels.append((prefix + "by occluder", [(kind, occluders[kind]) for kind in sorted(occluders)]))
+        bands = []
+        for band in part["breakdown"]["by_distance"]:
+            low, high = band["distance_factor"]
+            bands.append((f"{low:g}-{high:g}" if high is not None else f">= {low:g}", band))
+        panels.append((prefix + "by distance / longest side", bands))
+    figure, axes_list = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.2), squeeze=False)
+    colours = plt.get_cmap("tab10")(np.arange(len(names)))
+    for axes, (title, entries) in zip(axes_list[0], panels):
+        entries = [(label, entry) for label, entry in entries
+                   if entry.get("links", 0) >= 2 and "ratio_to_fullgauss" in entry.get(metric, {})]
+        spread = 0.8 / max(1, len(names))
+        for r, name in enumerate(names):
+            if name == "FullGauss":
+                continue
+            xs, ys, low, high = [], [], [], []
+            for g, (label, entry) in enumerate(entries):
+                ratio, lo, hi = entry[metric]["ratio_to_fullgauss"][r]
+                xs.append(g - 0.4 + (r + 0.5) * spread)
+                ys.append(ratio)
+                low.append(ratio - max(lo, 1e-3 * ratio))
+                high.append(hi - ratio)
+            axes.errorbar(xs, ys, yerr=[low, high], fmt="o", markersize=3, capsize=2,
+                          color=colours[r], label=name)
+        axes.axhline(1.0, color="black", linewidth=0.8)
+        axes.set_yscale("log")
+        axes.set_xticks(np.arange(len(entries)),
+                        [f"{label}\n({entry['links']} links)" for label, entry in entries], fontsize=7)
+        axes.set_title(title, fontsize=9)
+        axes.grid(axis="y", which="both", alpha=0.3)
+    axes_list[0][0].set_ylabel(f"mean {metric.replace('_', ' ')} / FullGauss's (95% interval)", fontsize=8)
+    axes_list[0][-1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    figure.suptitle(f"{stem}: where each rule wins against FullGauss (below 1: the rule is better)", fontsize=10)
+    save(figure, plots, stem + "-breakdown")
     plt.close(figure)
 
 
@@ -132,12 +201,13 @@ def main():
     parser.add_argument("--plots", default="plots")
     arguments = parser.parse_args()
     os.makedirs(arguments.plots, exist_ok=True)
-    figure1(load(os.path.join(arguments.results, "fig1.json")), arguments.plots, "fig1")
-    figure2(load(os.path.join(arguments.results, "fig2.json")), arguments.plots, "fig2")
-    for stem, draw in (("fig1-scene", figure1), ("fig2-scene", figure2)):
+    for stem, draw in (("fig1", figure1), ("fig2", figure2), ("fig1-scene", figure1), ("fig2-scene", figure2)):
         path = os.path.join(arguments.results, stem + ".json")
-        if os.path.exists(path):
-            draw(load(path), arguments.plots, stem)
+        if stem.endswith("-scene") and not os.path.exists(path):
+            continue
+        table = load(path)
+        draw(table, arguments.plots, stem)
+        breakdown_figure(table, arguments.plots, stem)
 
 
 if __name__ == "__main__":

@@ -37,6 +37,47 @@ std::vector<double> l1ErrorBound(const Eigen::MatrixXd& difference, double recei
   return bound;
 }
 
+double relativeFrobeniusError(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& reference) {
+  return (estimate - reference).norm() / reference.norm();
+}
+
+PairedRatio pairedRatio(const std::vector<double>& numerator,
+                        const std::vector<double>& denominator) {
+  const std::size_t n = std::min(numerator.size(), denominator.size());
+  PairedRatio out;
+  if (n == 0) return out;
+  double sumA = 0.0, sumB = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sumA += numerator[i];
+    sumB += denominator[i];
+  }
+  out.ratio = sumA / sumB;
+  out.low = out.high = out.ratio;
+  if (n < 2) return out;
+  const double meanB = sumB / double(n);
+  double squares = 0.0;  // z has mean 0 by construction of the ratio
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = (numerator[i] - out.ratio * denominator[i]) / meanB;
+    squares += z * z;
+  }
+  const double half = 1.96 * std::sqrt(squares / double(n - 1) / double(n));
+  out.low = out.ratio - half;
+  out.high = out.ratio + half;
+  return out;
+}
+
+PairedRatio unpairedRatio(const std::vector<double>& numerator,
+                          const std::vector<double>& denominator) {
+  const SummaryStatistics a = summarize(numerator), b = summarize(denominator);
+  PairedRatio out;
+  out.ratio = a.mean / b.mean;
+  const double relative =
+      std::sqrt(a.sem * a.sem / (a.mean * a.mean) + b.sem * b.sem / (b.mean * b.mean));
+  out.low = out.ratio * (1.0 - 1.96 * relative);
+  out.high = out.ratio * (1.0 + 1.96 * relative);
+  return out;
+}
+
 SummaryStatistics summarize(std::vector<double> values) {
   SummaryStatistics out;
   out.count = values.size();

@@ -10,6 +10,26 @@ namespace radquad {
 // Figure 1: |K~[0][0] - K[0][0]| / K[0][0].
 double relativeError(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& reference);
 
+// A scale-free error of the whole coupling: ||K~ - K||_F / ||K||_F (Frobenius norms), so
+// that links of very different transfer (a touching pair, a distant one) and the classes can
+// be compared; U_b is an absolute error per unit area and follows the link's size of K.
+double relativeFrobeniusError(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& reference);
+
+// The ratio of the means of paired samples, sum a_i / sum b_i, with a 95% confidence
+// interval by the delta method: the linearised ratio z_i = (a_i - ratio b_i) / mean(b) has
+// standard error sd(z) / sqrt(n), and the interval is ratio -+ 1.96 of it (normal
+// approximation; n >= 2, else the interval is the ratio itself).
+struct PairedRatio {
+  double ratio = 0.0, low = 0.0, high = 0.0;
+};
+PairedRatio pairedRatio(const std::vector<double>& numerator, const std::vector<double>& denominator);
+
+// The ratio of the means of two independent samples (different links), mean(a) / mean(b),
+// with a 95% interval by the delta method: relative standard error
+// sqrt(sem(a)^2 / mean(a)^2 + sem(b)^2 / mean(b)^2).
+PairedRatio unpairedRatio(const std::vector<double>& numerator,
+                          const std::vector<double>& denominator);
+
 // Figure 2: for each source function b (its coefficient 1, the others 0), the upper bound on
 // the L1 error per unit receiver area
 //   U_b = (1/A_r) sum_a |K~[a][b] - K[a][b]| int_{A_r} |M_a| dA,

@@ -144,6 +144,7 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     record.goldMaxRelativeError = gold.couplingError.maxCoeff() / G.cwiseAbs().maxCoeff();
     record.goldConverged = gold.converged;
     record.referenceRelativeErrorVsGold = relativeError(K, G);
+    record.referenceFrobeniusErrorVsGold = relativeFrobeniusError(K, G);
     record.referenceL1BoundVsGold = l1ErrorBound(K - G, area);
   }
   std::shared_ptr<LinkDetail> detail;
@@ -163,7 +164,7 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
   for (std::size_t r = 0; r < scorers.rules.size(); ++r) {
     const int trials = scorers.trials[r];
     const double share = 1.0 / trials;
-    double relative = 0.0, relativeGold = 0.0;
+    double relative = 0.0, relativeGold = 0.0, frobenius = 0.0, frobeniusGold = 0.0;
     std::vector<double> bound, boundGold;
     EntrywiseMoments moments;
     for (int t = 0; t < trials; ++t) {
@@ -172,9 +173,11 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
                                  accumulator, estimate);
       if (detail) moments.add(estimate.coupling);
       relative += share * relativeError(estimate.coupling, K);
+      frobenius += share * relativeFrobeniusError(estimate.coupling, K);
       addInto(bound, l1ErrorBound(estimate.coupling - K, area), share);
       if (scorers.gold) {
         relativeGold += share * relativeError(estimate.coupling, gold.coupling);
+        frobeniusGold += share * relativeFrobeniusError(estimate.coupling, gold.coupling);
         addInto(boundGold, l1ErrorBound(estimate.coupling - gold.coupling, area), share);
       }
     }
@@ -183,9 +186,11 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
       detail->ruleDeviation.push_back(moments.sampleDeviation());
     }
     record.relativeError.push_back(relative);
+    record.frobeniusError.push_back(frobenius);
     record.l1Bound.push_back(std::move(bound));
     if (scorers.gold) {
       record.relativeErrorVsGold.push_back(relativeGold);
+      record.frobeniusErrorVsGold.push_back(frobeniusGold);
       record.l1BoundVsGold.push_back(std::move(boundGold));
     }
   }

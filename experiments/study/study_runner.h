@@ -50,11 +50,14 @@ struct LinkRecord {
   double referenceRelativeStandardError = 0.0;   // NaN when the reference gives none
   std::vector<double> referenceL1StandardError;  // per source function; empty when none
   std::vector<double> relativeError;             // per rule
+  std::vector<double> frobeniusError;            // per rule: relativeFrobeniusError
   std::vector<std::vector<double>> l1Bound;      // per rule, per source function
   // With gold: the same against gold, and the reference's own error against gold.
   std::vector<double> relativeErrorVsGold;
+  std::vector<double> frobeniusErrorVsGold;
   std::vector<std::vector<double>> l1BoundVsGold;
   double referenceRelativeErrorVsGold = 0.0;
+  double referenceFrobeniusErrorVsGold = 0.0;
   std::string goldMethod;  // "gauss product", "exact visibility" or "dense stratified"
   double goldRelativeError = 0.0;  // the gold's own error estimate of K[0][0] / K[0][0]
   // The gold's largest error estimate over the largest |K| entry, and whether it met its

@@ -92,6 +92,7 @@ nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
       std::vector<double> totals;
       for (const auto& bound : link.l1Bound) totals.push_back(sum(bound));
       entry["l1_error_bound_total"] = roundedAll(totals);
+      entry["relative_frobenius_error"] = roundedAll(link.frobeniusError);
     }
     if (gold) {
       entry["gold_method"] = link.goldMethod;
@@ -103,6 +104,7 @@ nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
         std::vector<double> totals;
         for (const auto& bound : link.l1BoundVsGold) totals.push_back(sum(bound));
         entry["l1_error_bound_total_vs_gold"] = roundedAll(totals);
+        entry["relative_frobenius_error_vs_gold"] = roundedAll(link.frobeniusErrorVsGold);
       }
     }
     links.push_back(std::move(entry));
@@ -110,29 +112,44 @@ nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
   return links;
 }
 
+// Every rule's paired ratio of means to FullGauss's on the same links, with its 95% interval:
+// [ratio, low, high] per rule (study_metrics.h, pairedRatio).
+nlohmann::json ratiosTo(const std::vector<std::vector<double>>& values, std::size_t base) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::vector<double>& rule : values) {
+    const PairedRatio ratio = pairedRatio(rule, values[base]);
+    out.push_back({ratio.ratio, ratio.low, ratio.high});
+  }
+  return out;
+}
+
 // Mean and median of every rule's relative error (and L1 bound total, Figure 2) over the
 // links of one group, rules in the order of "rules".
 nlohmann::json groupScores(const std::vector<const LinkRecord*>& group, std::size_t rules,
-                           bool gold, bool fig2) {
+                           bool gold, bool fig2, int fullGauss) {
   nlohmann::json out = {{"links", group.size()}};
   if (group.empty()) return out;
   auto scores = [&](const auto& pick) {
     std::vector<double> means, medians, p90s, maxima;
+    std::vector<std::vector<double>> values(rules);
     for (std::size_t r = 0; r < rules; ++r) {
-      std::vector<double> values;
-      for (const LinkRecord* link : group) values.push_back(pick(*link, r));
-      const SummaryStatistics statistics = summarize(values);
+      for (const LinkRecord* link : group) values[r].push_back(pick(*link, r));
+      const SummaryStatistics statistics = summarize(values[r]);
       means.push_back(statistics.mean);
       medians.push_back(statistics.median);
       p90s.push_back(statistics.p90);
       maxima.push_back(statistics.max);
     }
-    return nlohmann::json{{"mean", means}, {"median", medians}, {"p90", p90s}, {"max", maxima}};
+    nlohmann::json table = {{"mean", means}, {"median", medians}, {"p90", p90s}, {"max", maxima}};
+    if (fullGauss >= 0) table["ratio_to_fullgauss"] = ratiosTo(values, std::size_t(fullGauss));
+    return table;
   };
   out["relative_error"] = scores([](const LinkRecord& l, std::size_t r) { return l.relativeError[r]; });
   if (fig2) {
     out["l1_error_bound_total"] =
         scores([](const LinkRecord& l, std::size_t r) { return sum(l.l1Bound[r]); });
+    out["relative_frobenius_error"] =
+        scores([](const LinkRecord& l, std::size_t r) { return l.frobeniusError[r]; });
   }
   if (gold) {
     out["relative_error_vs_gold"] =
@@ -140,6 +157,8 @@ nlohmann::json groupScores(const std::vector<const LinkRecord*>& group, std::siz
     if (fig2) {
       out["l1_error_bound_total_vs_gold"] =
           scores([](const LinkRecord& l, std::size_t r) { return sum(l.l1BoundVsGold[r]); });
+      out["relative_frobenius_error_vs_gold"] =
+          scores([](const LinkRecord& l, std::size_t r) { return l.frobeniusErrorVsGold[r]; });
     }
   }
   return out;
@@ -147,13 +166,16 @@ nlohmann::json groupScores(const std::vector<const LinkRecord*>& group, std::siz
 
 // Where each rule wins: the scores by occluder kind and by distance band (distance of the
 // centres over the longest side).
-nlohmann::json breakdown(const ClassRun& classRun, std::size_t rules, bool gold, bool fig2) {
+nlohmann::json breakdown(const ClassRun& classRun, std::size_t rules, bool gold, bool fig2,
+                         int fullGauss) {
   std::map<std::string, std::vector<const LinkRecord*>> byOccluder;
   for (const LinkRecord& link : classRun.links) {
     byOccluder[occluderKindName(link.occluderKind)].push_back(&link);
   }
   nlohmann::json occluders = nlohmann::json::object();
-  for (const auto& [kind, group] : byOccluder) occluders[kind] = groupScores(group, rules, gold, fig2);
+  for (const auto& [kind, group] : byOccluder) {
+    occluders[kind] = groupScores(group, rules, gold, fig2, fullGauss);
+  }
   constexpr double kBands[] = {0.0, 0.5, 1.0, 2.0, 1e300};
   nlohmann::json distances = nlohmann::json::array();
   for (int band = 0; band < 4; ++band) {
@@ -163,7 +185,7 @@ nlohmann::json breakdown(const ClassRun& classRun, std::size_t rules, bool gold,
         group.push_back(&link);
       }
     }
-    nlohmann::json entry = groupScores(group, rules, gold, fig2);
+    nlohmann::json entry = groupScores(group, rules, gold, fig2, fullGauss);
     entry["distance_factor"] = {kBands[band], band == 3 ? nlohmann::json(nullptr)
                                                         : nlohmann::json(kBands[band + 1])};
     distances.push_back(std::move(entry));
@@ -197,6 +219,26 @@ nlohmann::json candidateCounts(const ClassRun& run) {
   return counts;
 }
 
+// The index of FullGauss among the run's rules, -1 when it is not scored.
+int fullGaussIndex(const StudyRun& run) {
+  for (std::size_t r = 0; r < run.rules.size(); ++r) {
+    if (run.rules[r].name == "FullGauss") return int(r);
+  }
+  return -1;
+}
+
+// {ratio, low, high} of rule r's mean score to FullGauss's on the same links.
+nlohmann::json ratioToFullGauss(const std::vector<LinkRecord>& links, std::size_t r, int fullGauss,
+                                const auto& pick) {
+  std::vector<double> rule, base;
+  for (const LinkRecord& link : links) {
+    rule.push_back(pick(link, r));
+    base.push_back(pick(link, std::size_t(fullGauss)));
+  }
+  const PairedRatio ratio = pairedRatio(rule, base);
+  return {{"ratio", ratio.ratio}, {"low95", ratio.low}, {"high95", ratio.high}};
+}
+
 nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& classRun, bool gold,
                          bool fig2) {
   const RuleInfo& rule = run.rules[r];
@@ -209,19 +251,50 @@ nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& cla
       {"trials", rule.trials},
       {"relative_error", statisticsToJson(summarize(column(
                              links, [r](const LinkRecord& l) { return l.relativeError[r]; })))}};
+  const int fullGauss = fullGaussIndex(run);
+  const auto pickRelative = [](const LinkRecord& l, std::size_t k) { return l.relativeError[k]; };
+  nlohmann::json ratios = nlohmann::json::object();
+  if (fullGauss >= 0 && !links.empty()) {
+    ratios["relative_error"] = ratioToFullGauss(links, r, fullGauss, pickRelative);
+  }
   if (fig2) {
     entry["l1_error_bound"] = boundTable(
         links, [r](const LinkRecord& l) -> const std::vector<double>& { return l.l1Bound[r]; });
+    entry["relative_frobenius_error"] = statisticsToJson(
+        summarize(column(links, [r](const LinkRecord& l) { return l.frobeniusError[r]; })));
+    if (fullGauss >= 0 && !links.empty()) {
+      ratios["l1_error_bound_total"] = ratioToFullGauss(
+          links, r, fullGauss, [](const LinkRecord& l, std::size_t k) { return sum(l.l1Bound[k]); });
+      ratios["relative_frobenius_error"] = ratioToFullGauss(
+          links, r, fullGauss, [](const LinkRecord& l, std::size_t k) { return l.frobeniusError[k]; });
+    }
   }
   if (gold) {
     entry["relative_error_vs_gold"] = statisticsToJson(
         summarize(column(links, [r](const LinkRecord& l) { return l.relativeErrorVsGold[r]; })));
+    if (fullGauss >= 0 && !links.empty()) {
+      ratios["relative_error_vs_gold"] = ratioToFullGauss(
+          links, r, fullGauss, [](const LinkRecord& l, std::size_t k) { return l.relativeErrorVsGold[k]; });
+    }
     if (fig2) {
       entry["l1_error_bound_vs_gold"] = boundTable(
           links,
           [r](const LinkRecord& l) -> const std::vector<double>& { return l.l1BoundVsGold[r]; });
+      entry["relative_frobenius_error_vs_gold"] = statisticsToJson(summarize(
+          column(links, [r](const LinkRecord& l) { return l.frobeniusErrorVsGold[r]; })));
+      if (fullGauss >= 0 && !links.empty()) {
+        ratios["l1_error_bound_total_vs_gold"] =
+            ratioToFullGauss(links, r, fullGauss, [](const LinkRecord& l, std::size_t k) {
+              return sum(l.l1BoundVsGold[k]);
+            });
+        ratios["relative_frobenius_error_vs_gold"] =
+            ratioToFullGauss(links, r, fullGauss, [](const LinkRecord& l, std::size_t k) {
+              return l.frobeniusErrorVsGold[k];
+            });
+      }
     }
   }
+  if (!ratios.empty()) entry["ratio_to_fullgauss"] = ratios;
   return entry;
 }
 
@@ -243,6 +316,8 @@ nlohmann::json classReference(const StudyRun& run, const ClassRun& classRun, boo
           boundTable(classRun.links, [](const LinkRecord& l) -> const std::vector<double>& {
             return l.referenceL1BoundVsGold;
           });
+      reference["relative_frobenius_error_vs_gold"] = statisticsToJson(summarize(column(
+          classRun.links, [](const LinkRecord& l) { return l.referenceFrobeniusErrorVsGold; })));
     }
   }
   return reference;
@@ -256,7 +331,7 @@ nlohmann::json classTable(const StudyRun& run, const ClassRun& classRun, bool go
           {"candidates", candidateCounts(classRun)},
           {"reference", classReference(run, classRun, gold, fig2)},
           {"rules", rules},
-          {"breakdown", breakdown(classRun, run.rules.size(), gold, fig2)},
+          {"breakdown", breakdown(classRun, run.rules.size(), gold, fig2, fullGaussIndex(run))},
           {"per_link", perLinkTable(classRun, gold, fig2)}};
 }
 

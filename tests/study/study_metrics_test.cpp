@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+
+#include <cmath>
 
 #include "experiments/study/study_metrics.h"
 
@@ -57,6 +60,66 @@ TEST(StudyMetrics, SummaryStatistics) {
   EXPECT_DOUBLE_EQ(s.sem, std::sqrt(2.5));
   EXPECT_EQ(summarize({}).count, 0u);
   EXPECT_EQ(summarize({7.0}).sem, 0.0);
+}
+
+TEST(StudyMetrics, RelativeFrobeniusErrorIsTheNormOfTheDifferenceOverTheNorm) {
+  Eigen::MatrixXd reference(2, 2), estimate(2, 2);
+  reference << 3, 0, 0, 4;  // norm 5
+  estimate << 3, 1, 0, 4;   // difference norm 1
+  EXPECT_DOUBLE_EQ(relativeFrobeniusError(estimate, reference), 0.2);
+  // Scale-free: the same relative error for a coupling a thousand times larger.
+  EXPECT_DOUBLE_EQ(relativeFrobeniusError(1000 * estimate, 1000 * reference), 0.2);
+}
+
+TEST(StudyMetrics, PairedRatioWithItsDeltaMethodInterval) {
+  // a = (1, 2, 3), b = (1, 1, 1): ratio 2, z = a - 2 b = (-1, 0, 1), sd 1, half-width
+  // 1.96 / sqrt(3).
+  const PairedRatio ratio = pairedRatio({1, 2, 3}, {1, 1, 1});
+  EXPECT_DOUBLE_EQ(ratio.ratio, 2.0);
+  EXPECT_NEAR(ratio.high - ratio.ratio, 1.96 / std::sqrt(3.0), 1e-14);
+  EXPECT_NEAR(ratio.ratio - ratio.low, 1.96 / std::sqrt(3.0), 1e-14);
+  // Proportional pairs: the ratio is exact and the interval has no width.
+  const PairedRatio exact = pairedRatio({2, 4, 6, 8}, {1, 2, 3, 4});
+  EXPECT_DOUBLE_EQ(exact.ratio, 2.0);
+  EXPECT_NEAR(exact.high - exact.low, 0.0, 1e-14);
+  // Coverage, measured: pairs b ~ U(1, 2), a = 0.7 b + noise; the 95% interval covers the
+  // true ratio of means 0.7 in about 95% of 2,000 suites of 200 links.
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> uniform(1.0, 2.0);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  int covered = 0;
+  for (int suite = 0; suite < 2000; ++suite) {
+    std::vector<double> a, b;
+    for (int link = 0; link < 200; ++link) {
+      b.push_back(uniform(random));
+      a.push_back(0.7 * b.back() + noise(random));
+    }
+    const PairedRatio r = pairedRatio(a, b);
+    covered += r.low <= 0.7 && 0.7 <= r.high ? 1 : 0;
+  }
+  EXPECT_NEAR(covered / 2000.0, 0.95, 0.015);
+}
+
+TEST(StudyMetrics, EntrywiseMomentsAgreeWithTheTwoPassFormulas) {
+  std::mt19937_64 random(9);
+  std::normal_distribution<double> normal(1e6, 1.0);  // a large mean: cancellation-prone
+  std::vector<Eigen::MatrixXd> draws;
+  EntrywiseMoments moments;
+  for (int k = 0; k < 50; ++k) {
+    Eigen::MatrixXd draw(2, 3);
+    for (int e = 0; e < 6; ++e) draw.data()[e] = normal(random);
+    draws.push_back(draw);
+    moments.add(draw);
+  }
+  Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(2, 3), squares = Eigen::MatrixXd::Zero(2, 3);
+  for (const auto& draw : draws) mean += draw / 50.0;
+  for (const auto& draw : draws) squares += (draw - mean).cwiseAbs2();
+  const Eigen::MatrixXd deviation = (squares / 49.0).cwiseSqrt();
+  EXPECT_LE((moments.mean() - mean).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LE((moments.sampleDeviation() - deviation).cwiseAbs().maxCoeff(), 1e-9);
+  EntrywiseMoments one;
+  one.add(draws[0]);
+  EXPECT_EQ(one.sampleDeviation(), Eigen::MatrixXd::Zero(2, 3));
 }
 
 }  // namespace

@@ -15,6 +15,8 @@
 #include <iostream>
 
 #include "experiments/json_input.h"
+#include "experiments/study/claims.h"
+#include "experiments/study/study_metrics.h"
 #include "experiments/study/study_runner.h"
 
 namespace radquad {
@@ -98,21 +100,15 @@ TEST(StudyClaims, ConstantBasesPartialLinksStratifiedBeatsTheOthers) {
   // delta method on the paired per-link errors.
   const std::size_t s = ruleIndex(suite.run, "Stratified"), f = ruleIndex(suite.run, "FullGauss");
   const auto& links = suite.run.classes.front().links;
-  const double n = double(links.size());
-  double meanS = 0, meanF = 0;
+  std::vector<double> stratifiedErrors, fullGaussErrors;
   for (const LinkRecord& link : links) {
-    meanS += link.relativeError[s] / n;
-    meanF += link.relativeError[f] / n;
+    stratifiedErrors.push_back(link.relativeError[s]);
+    fullGaussErrors.push_back(link.relativeError[f]);
   }
-  const double ratio = meanS / meanF;
-  double variance = 0;  // of the linearised ratio: (S - ratio F) / meanF
-  for (const LinkRecord& link : links) {
-    const double z = (link.relativeError[s] - ratio * link.relativeError[f]) / meanF;
-    variance += z * z / (n - 1);
-  }
-  const double half = 1.96 * std::sqrt(variance / n);
+  const PairedRatio paired = pairedRatio(stratifiedErrors, fullGaussErrors);
+  const double ratio = paired.ratio;
   std::cout << "Stratified / FullGauss mean relative error, constant bases, partial links: "
-            << ratio << " (95% CI " << ratio - half << " .. " << ratio + half << ", "
+            << ratio << " (95% CI " << paired.low << " .. " << paired.high << ", "
             << links.size() << " links)\n";
   EXPECT_TRUE(std::isfinite(ratio));
 }
@@ -134,6 +130,23 @@ TEST(StudyClaims, ConstantSourceUnoccludedLinSrcGaussBeatsStratified) {
   EXPECT_LT(
       ruleEntry(rules, "LinSrcGauss")["l1_error_bound"]["per_source_function"][0].get<double>(),
       ruleEntry(rules, "Stratified")["l1_error_bound"]["per_source_function"][0].get<double>());
+}
+
+// The report's claims on the scene-derived quick suites, as the report states them
+// (experiments/study/claims.h). Their verdicts are findings, recorded in
+// tests/baselines/claims.json: a verdict that changes fails here, so that it is looked at and
+// recorded again, never silently; a claim that fails is not a test failure by itself.
+TEST(StudyClaims, VerdictsOnTheSceneSuitesAreTheRecordedOnes) {
+  const nlohmann::json claims =
+      reportClaims(quickSuite("fig1-scene").table, quickSuite("fig2-scene").table, false);
+  const nlohmann::json recorded = readJsonFile(kRoot / "tests/baselines/claims.json");
+  std::cout << claims.dump(2) << "\n";
+  for (const char* claim :
+       {"fig1_stratified_best", "fig2_gauss_best", "fig2_partial_more_error"}) {
+    EXPECT_EQ(claims[claim]["verdict"], recorded[claim]["verdict"]) << claim;
+  }
+  EXPECT_EQ(claims["fig2_partial_more_error"]["scale_free"]["verdict"],
+            recorded["fig2_partial_more_error"]["scale_free"]["verdict"]);
 }
 
 }  // namespace

@@ -1,0 +1,27 @@
+// The report's claims about its Figures 1 and 2 (Gershbein 1995, section 4), checked on a
+// pair of study tables as the report states them, each with a verdict: "holds" (the 95%
+// interval of the ratio of means lies on the claimed side of 1), "fails" (on the other side)
+// or "inconclusive" (it contains 1). A claim that fails with a correct implementation is a
+// finding, recorded as such; the suites are never tuned to make a claim hold.
+//
+// 1. fig1_stratified_best: "stratified sampling performs best" on partially occluded links
+//    with constant bases: Stratified's mean relative error of K[0][0] against every other
+//    rule's, paired on the same links.
+// 2. fig2_gauss_best: with quadratic bases the Gauss rules are "far better": every Monte
+//    Carlo rule's mean total L1 bound U_tot against FullGauss's, paired, in each class.
+// 3. fig2_partial_more_error: partially occluded links carry more error than unoccluded
+//    ones: for each rule, the mean U_tot of the partial class against the unoccluded class's
+//    (different links: unpaired). The report states it in U_b; the same ratio in the
+//    scale-free relative Frobenius error is recorded beside it (`scale_free`), since U_b
+//    follows each link's size of K.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+namespace radquad {
+
+// `fig1` and `fig2` are study tables (schema radquad.study/1) with per-link scores;
+// `vsGold` scores against the gold (the tables must then hold gold scores).
+nlohmann::json reportClaims(const nlohmann::json& fig1, const nlohmann::json& fig2, bool vsGold);
+
+}  // namespace radquad
