@@ -60,7 +60,10 @@ def reference_note(table):
 
 def scene_source(table):
     links = table["options"].get("links")
-    return f" of scene {links['scene']} (solver degree {links['degree']})" if links else ""
+    if not links:
+        return ""
+    scenes = links["scene"] if isinstance(links["scene"], list) else [links["scene"]]
+    return f" of {'scenes' if len(scenes) > 1 else 'scene'} {', '.join(scenes)} (solver degree {links['degree']})"
 
 
 def figure1(table, plots, stem):

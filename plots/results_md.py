@@ -48,10 +48,17 @@ def gold_suffix(rules):
     return "_vs_gold" if rules and "relative_error_vs_gold" in rules[0] else ""
 
 
+def scene_source(links):
+    if not links:
+        return "generated links"
+    scenes = links["scene"] if isinstance(links["scene"], list) else [links["scene"]]
+    return f"links of degree-{links['degree']} solves of {' and '.join(scenes)}"
+
+
 def figure1(name, data):
     out = [f"## Figure 1: {name}\n"]
     links = data["options"].get("links")
-    source = f"links of a degree-{links['degree']} solve of {links['scene']}" if links else "generated links"
+    source = scene_source(links)
     rules = data["rules"]
     suffix = gold_suffix(rules)
     against = "the gold" if suffix else "the paper's reference"
@@ -96,7 +103,7 @@ def breakdown(part, names, metric):
 def figure2(name, data):
     out = [f"## Figure 2: {name}\n"]
     links = data["options"].get("links")
-    source = f"links of a degree-{links['degree']} solve of {links['scene']}" if links else "generated links"
+    source = scene_source(links)
     for class_name, part in data["classes"].items():
         rules = part["rules"]
         suffix = "_vs_gold" if "l1_error_bound_vs_gold" in rules[0] else ""

@@ -1,6 +1,6 @@
 // `radquad figures [--quick] [--gold]`: regenerates Figures 1 and 2: runs the study configs
 // experiments/configs/fig1.json and fig2.json (synthetic links) and fig1-scene.json,
-// fig2-scene.json (the links of a solve of the cornell scene) (the -quick variants with
+// fig2-scene.json (the links of solves of the built-in scenes) (the -quick variants with
 // --quick) into results/<name>.json, then draws plots/<name>.{png,svg} with
 // plots/figures.py. Quick runs go to results/quick/ and
 // plots/quick/ so they never overwrite the canonical tables. The report's claims, checked on the

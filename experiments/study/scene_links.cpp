@@ -14,10 +14,19 @@ namespace radquad {
 SceneLinkOptions parseSceneLinkOptions(const nlohmann::json& value, const std::string& where) {
   checkKeys(value, where, {"scene", "degree", "bf_eps"}, {"scene"});
   SceneLinkOptions options;
-  if (!value["scene"].is_string() || value["scene"].get<std::string>().empty()) {
-    throw InputError(where + ": scene must be a built-in scene name or a path");
+  const auto& scene = value["scene"];
+  const auto addScene = [&](const nlohmann::json& name) {
+    if (!name.is_string() || name.get<std::string>().empty()) {
+      throw InputError(where + ": scene must be a built-in scene name or a path, or a list of them");
+    }
+    options.scenes.push_back(name.get<std::string>());
+  };
+  if (scene.is_array()) {
+    if (scene.empty()) throw InputError(where + ": scene: the list is empty");
+    for (const auto& name : scene) addScene(name);
+  } else {
+    addScene(scene);
   }
-  options.scene = value["scene"].get<std::string>();
   if (value.contains("degree")) {
     const auto& degree = value["degree"];
     if (!degree.is_number_integer() || degree.get<long long>() < 0 || degree.get<long long>() > 3) {
@@ -33,32 +42,37 @@ SceneLinkOptions parseSceneLinkOptions(const nlohmann::json& value, const std::s
 }
 
 nlohmann::json sceneLinkOptionsToJson(const SceneLinkOptions& options) {
-  return {{"scene", options.scene}, {"degree", options.degree}, {"bf_eps", options.bfEps}};
+  const nlohmann::json scene =
+      options.scenes.size() == 1 ? nlohmann::json(options.scenes.front()) : nlohmann::json(options.scenes);
+  return {{"scene", scene}, {"degree", options.degree}, {"bf_eps", options.bfEps}};
 }
 
 SceneLinkPool::SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed)
-    : scene_(loadScene(options.scene)) {
-  SolverOptions solverOptions;
-  solverOptions.degree = options.degree;
-  solverOptions.bfEpsilon = options.bfEps;
-  solverOptions.rules = RuleChoice::kFixed;
-  Solver solver(scene_, solverOptions);
-  solver.solve();
-  const Hierarchy& hierarchy = solver.hierarchy();
-  for (const SolverLink& link : solver.links()) {
-    if (link.split) continue;  // replaced by its children
-    if (link.visibility == LinkClass::kOccluded) {  // inactive: carries nothing
+    : names_(options.scenes) {
+  for (const std::string& name : options.scenes) scenes_.push_back(loadScene(name));
+  for (std::size_t index = 0; index < scenes_.size(); ++index) {
+    SolverOptions solverOptions;
+    solverOptions.degree = options.degree;
+    solverOptions.bfEpsilon = options.bfEps;
+    solverOptions.rules = RuleChoice::kFixed;
+    Solver solver(scenes_[index], solverOptions);
+    solver.solve();
+    const Hierarchy& hierarchy = solver.hierarchy();
+    for (const SolverLink& link : solver.links()) {
+      if (link.split) continue;  // replaced by its children
+      if (link.visibility == LinkClass::kOccluded) {  // inactive: carries nothing
+        ++total_;
+        ++occluded_;
+        continue;
+      }
+      if (!link.active) continue;
       ++total_;
-      ++occluded_;
-      continue;
+      const Element& receiver = hierarchy[link.receiver];
+      const Element& source = hierarchy[link.source];
+      SceneLinkEntry entry{int(index),     receiver.geometry, source.geometry, receiver.patch,
+                           source.patch,   receiver.level,    source.level};
+      (link.visibility == LinkClass::kPartial ? partial_ : unoccluded_).push_back(std::move(entry));
     }
-    if (!link.active) continue;
-    ++total_;
-    const Element& receiver = hierarchy[link.receiver];
-    const Element& source = hierarchy[link.source];
-    SceneLinkEntry entry{receiver.geometry, source.geometry, receiver.patch,
-                         source.patch,      receiver.level,  source.level};
-    (link.visibility == LinkClass::kPartial ? partial_ : unoccluded_).push_back(std::move(entry));
   }
   // A seeded Fisher-Yates shuffle per class: candidate k is the k-th of a uniform sample.
   for (auto* links : {&unoccluded_, &partial_}) {
@@ -79,9 +93,10 @@ const SceneLinkEntry& SceneLinkPool::entry(StudyClass linkClass, std::size_t k) 
 
 std::unique_ptr<OccluderScene> SceneLinkPool::occluders(const SceneLinkEntry& entry) const {
   auto scene = std::make_unique<OccluderScene>();
-  for (std::size_t p = 0; p < scene_.patches.size(); ++p) {
+  const Scene& own = scenes_.at(std::size_t(entry.scene));
+  for (std::size_t p = 0; p < own.patches.size(); ++p) {
     if (int(p) == entry.receiverPatch || int(p) == entry.sourcePatch) continue;
-    scene->addParallelogram(scene_.patches[p].patch);
+    scene->addParallelogram(own.patches[p].patch);
   }
   scene->commit();
   return scene;

@@ -2,14 +2,15 @@
 // of a scene ends with, as the report's Figure 2 measured them ("the links in a scene that
 // used a quadratic multiwavelet basis"), rather than synthetic pairs.
 //
-// A study config's "links": {"scene": NAME or PATH, "degree": D, "bf_eps": E} solves the
-// scene with fixed Gauss rules at basis degree D and BF threshold E (other solver options at
-// their defaults), and takes its final active links: receiver and source elements as patches,
-// every other patch of the scene as an occluder, the class from the solver's visibility
-// classification (unoccluded or partial; occluded links carry nothing and are not scored).
-// Candidate k of a class is the link at position k of that class's links in a fixed
-// pseudo-random order drawn from the study's seed, so a suite of N links is a uniform sample
-// without replacement, the same for any thread count.
+// A study config's "links": {"scene": NAME or PATH or [NAME or PATH, ...], "degree": D,
+// "bf_eps": E} solves each scene with fixed Gauss rules at basis degree D and BF threshold E
+// (other solver options at their defaults), and takes its final active links: receiver and
+// source elements as patches, every other patch of that scene as an occluder, the class from
+// the solver's visibility classification (unoccluded or partial; occluded links carry nothing
+// and are not scored). The links of several scenes form one pool. Candidate k of a class is
+// the link at position k of that class's links in a fixed pseudo-random order drawn from the
+// study's seed, so a suite of N links is a uniform sample without replacement of the pool,
+// the same for any thread count.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,7 @@
 namespace radquad {
 
 struct SceneLinkOptions {
-  std::string scene;  // built-in name or path
+  std::vector<std::string> scenes;  // built-in names or paths, at least one
   int degree = 2;
   double bfEps = 0.05;
 };
@@ -34,6 +35,7 @@ SceneLinkOptions parseSceneLinkOptions(const nlohmann::json& value, const std::s
 nlohmann::json sceneLinkOptionsToJson(const SceneLinkOptions& options);
 
 struct SceneLinkEntry {
+  int scene = 0;  // index in SceneLinkOptions::scenes
   Patch receiver;
   Patch source;
   int receiverPatch = 0;
@@ -44,20 +46,22 @@ struct SceneLinkEntry {
 
 class SceneLinkPool {
  public:
-  // Solves the scene; throws InputError for a bad scene, ComputationError when the solve
+  // Solves every scene; throws InputError for a bad scene, ComputationError when a solve
   // fails.
   SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed);
 
   // Links of the class in sampling order (StudyClass::unoccluded or partial).
   std::size_t size(StudyClass linkClass) const;
   const SceneLinkEntry& entry(StudyClass linkClass, std::size_t k) const;
-  // The scene's patches except the link's own two, committed.
+  // The patches of the link's scene except its own two, committed.
   std::unique_ptr<OccluderScene> occluders(const SceneLinkEntry& entry) const;
   std::size_t totalLinks() const { return total_; }
   std::size_t occludedLinks() const { return occluded_; }
+  const std::vector<std::string>& sceneNames() const { return names_; }
 
  private:
-  Scene scene_;
+  std::vector<std::string> names_;
+  std::vector<Scene> scenes_;
   std::vector<SceneLinkEntry> unoccluded_, partial_;
   std::size_t total_ = 0, occluded_ = 0;
 };

@@ -37,6 +37,7 @@ struct CandidateGeometry {
   std::unique_ptr<OccluderScene> scene;
   Orientation orientation = Orientation::parallel;
   OccluderKind occluderKind = OccluderKind::none;
+  std::string sceneName;  // scene-derived: the link's scene
 };
 
 double distanceFactorOf(const Patch& receiver, const Patch& source) {
@@ -58,12 +59,13 @@ CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& sc
   if (scorers.pool != nullptr) {
     const SceneLinkEntry& entry = scorers.pool->entry(linkClass, std::size_t(index));
     return {entry.receiver, entry.source, scorers.pool->occluders(entry),
-            orientationOf(entry.receiver, entry.source), OccluderKind::scene};
+            orientationOf(entry.receiver, entry.source), OccluderKind::scene,
+            scorers.pool->sceneNames().at(std::size_t(entry.scene))};
   }
   const GeneratedLink generated =
       generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
   return {generated.receiver, generated.source, generated.buildScene(), generated.orientation,
-          generated.occluderKind};
+          generated.occluderKind, {}};
 }
 
 struct Candidate {
@@ -110,6 +112,7 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.candidate = index;
   record.orientation = generated.orientation;
   record.occluderKind = generated.occluderKind;
+  record.scene = generated.sceneName;
   record.distanceFactor = distanceFactorOf(generated.receiver, generated.source);
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;

@@ -45,6 +45,7 @@ struct LinkRecord {
   std::uint64_t candidate = 0;
   Orientation orientation = Orientation::parallel;
   OccluderKind occluderKind = OccluderKind::none;
+  std::string scene;  // scene-derived links: the name of the link's scene (empty otherwise)
   double visibleFraction = 1.0;                  // by the reference's rays
   double distanceFactor = 0.0;  // centre distance / the longest side of the two patches
   double referenceRelativeStandardError = 0.0;   // NaN when the reference gives none

@@ -82,6 +82,7 @@ nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
                             {"orientation", orientationName(link.orientation)},
                             {"distance_factor", rounded(link.distanceFactor)},
                             {"visible_fraction", rounded(link.visibleFraction)}};
+    if (!link.scene.empty()) entry["scene"] = link.scene;
     auto roundedAll = [](const std::vector<double>& values) {
       std::vector<double> out;
       for (const double value : values) out.push_back(rounded(value));
@@ -170,7 +171,10 @@ nlohmann::json breakdown(const ClassRun& classRun, std::size_t rules, bool gold,
                          int fullGauss) {
   std::map<std::string, std::vector<const LinkRecord*>> byOccluder;
   for (const LinkRecord& link : classRun.links) {
-    byOccluder[occluderKindName(link.occluderKind)].push_back(&link);
+    // Scene-derived links: by their scene.
+    const std::string kind = link.scene.empty() ? occluderKindName(link.occluderKind)
+                                                : std::string("scene ") + link.scene;
+    byOccluder[kind].push_back(&link);
   }
   nlohmann::json occluders = nlohmann::json::object();
   for (const auto& [kind, group] : byOccluder) {
@@ -423,6 +427,8 @@ std::string linkTableLines(const StudyConfig& config, const StudyRun& run) {
                              {"orientation", orientationName(link.orientation)},
                              {"distance_factor", link.distanceFactor},
                              {"visible_fraction", link.visibleFraction},
+                             {"scene", link.scene.empty() ? nlohmann::json(nullptr)
+                                                          : nlohmann::json(link.scene)},
                              {"receiver", patchToJson(detail.receiver)},
                              {"source", patchToJson(detail.source)},
                              {"occluders", std::move(occluders)},

@@ -184,7 +184,7 @@ TEST(SceneLinks, ASuiteOfASolvesLinksIsTheSameWhateverTheThreadCount) {
 }
 
 TEST(SceneLinks, ThePoolHoldsTheSolvesFinalLinksAsPatchesWithTheRestOfTheSceneAsOccluders) {
-  const SceneLinkPool pool(SceneLinkOptions{"cornell", 0, 0.5}, 5);
+  const SceneLinkPool pool(SceneLinkOptions{{"cornell"}, 0, 0.5}, 5);
   const Scene scene = loadScene("cornell");
   EXPECT_EQ(pool.size(StudyClass::unoccluded) + pool.size(StudyClass::partial) +
                 pool.occludedLinks(),
@@ -202,6 +202,30 @@ TEST(SceneLinks, ThePoolHoldsTheSolvesFinalLinksAsPatchesWithTheRestOfTheSceneAs
   }
 }
 
+// Several scenes form one pool: its classes hold every scene's links (the single-scene pools'
+// counts add up), and each link's occluders are the other patches of its own scene.
+TEST(SceneLinks, APoolOfTwoScenesHoldsBothScenesLinks) {
+  const SceneLinkPool cornell(SceneLinkOptions{{"cornell"}, 0, 0.5}, 5);
+  const SceneLinkPool slats(SceneLinkOptions{{"slats"}, 0, 0.5}, 5);
+  const SceneLinkPool both(SceneLinkOptions{{"cornell", "slats"}, 0, 0.5}, 5);
+  for (StudyClass linkClass : {StudyClass::unoccluded, StudyClass::partial}) {
+    EXPECT_EQ(both.size(linkClass), cornell.size(linkClass) + slats.size(linkClass));
+  }
+  EXPECT_EQ(both.totalLinks(), cornell.totalLinks() + slats.totalLinks());
+  const std::size_t patches[2] = {loadScene("cornell").patches.size(), loadScene("slats").patches.size()};
+  int seen[2] = {0, 0};
+  for (std::size_t k = 0; k < both.size(StudyClass::partial); ++k) {
+    const SceneLinkEntry& entry = both.entry(StudyClass::partial, k);
+    ASSERT_TRUE(entry.scene == 0 || entry.scene == 1);
+    ++seen[entry.scene];
+    if (k < 20) {
+      EXPECT_EQ(both.occluders(entry)->primitiveCount(), patches[entry.scene] - 2);
+    }
+  }
+  EXPECT_GT(seen[0], 0);
+  EXPECT_GT(seen[1], 0);
+}
+
 TEST(SceneLinks, ConfigsRejectGeometryBesideSceneLinksAndNameBadScenes) {
   const auto parse = [](const char* text) {
     return parseStudyConfig(nlohmann::json::parse(text), "cfg");
@@ -213,6 +237,16 @@ TEST(SceneLinks, ConfigsRejectGeometryBesideSceneLinksAndNameBadScenes) {
   EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
                          "rules": ["FullGauss"], "links": {"degree": 2}})"),
                InputError);
+  EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                         "rules": ["FullGauss"], "links": {"scene": []}})"),
+               InputError);
+  EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                         "rules": ["FullGauss"], "links": {"scene": ["cornell", 3]}})"),
+               InputError);
+  // A list round-trips as a list, one scene as a string.
+  EXPECT_EQ(studyConfigToJson(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
+                         "rules": ["FullGauss"], "links": {"scene": ["cornell", "slats"]}})"))["links"]["scene"],
+            nlohmann::json::array({"cornell", "slats"}));
   EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
                          "rules": ["FullGauss"], "links": {"scene": "cornell", "degree": 4}})"),
                InputError);
