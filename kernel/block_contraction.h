@@ -3,7 +3,7 @@
 //   coupling[a][b] += sum_p g_p phi_i(s_p) phi_j(t_p) phi_k(u_p) phi_l(v_p),
 //   a = i (d+1) + j (receiver), b = k (d+1) + l (source),
 // the unit-square form of K = sqrt(A_r A_s) sum_k w_k phi_a(x_k) G_k phi_b(x'_k)
-// (DESIGN.md, "Mathematical conventions"). Not part of the kernel's interface.
+// (docs/design.md, "Conventions"). Not part of the kernel's interface.
 #pragma once
 
 #include <Eigen/Core>

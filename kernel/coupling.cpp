@@ -1,7 +1,7 @@
 #include "kernel/coupling.h"
+#include "kernel/input_error.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -223,8 +223,8 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
                                   const WeightedBasisTable& receiverBasis,
                                   const PatchSamples& source, const WeightedBasisTable& sourceBasis,
                                   LinkIntegral& result) {
-  assert(receiverBasis.degree == sourceBasis.degree);
-  assert(receiverBasis.points() == receiver.size() && sourceBasis.points() == source.size());
+  RADQUAD_REQUIRE(receiverBasis.degree == sourceBasis.degree);
+  RADQUAD_REQUIRE(receiverBasis.points() == receiver.size() && sourceBasis.points() == source.size());
   const std::size_t nr = receiver.size();
   const std::size_t ns = source.size();
   const Patch& r = link.receiver;

@@ -1,4 +1,4 @@
-// The coupling matrix of a link (DESIGN.md, "Mathematical conventions"):
+// The coupling matrix of a link (docs/design.md, "Conventions"):
 //   K[a][b] = int_{A_r} int_{A_s} M_a(x) G(x,x') M_b(x') dA' dA,
 //   G(x,x') = cos(theta) cos(theta') V(x,x') / (pi |x - x'|^2),
 // estimated as A_r A_s sum_k w_k M_a(x_k) G(x_k,x'_k) M_b(x'_k) from one set of kernel

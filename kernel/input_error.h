@@ -1,6 +1,7 @@
 // Errors in what a user gave radquad (a file, an option, a rule name), and computations that
 // failed. Every command catches InputError at the top, prints its message on stderr and exits
-// with status 2 (ComputationError: status 3); internal invariants use assertions instead.
+// with status 2 (ComputationError: status 3). Internal invariants are checked in every build
+// with RADQUAD_REQUIRE, which throws std::logic_error naming the condition and its place.
 #pragma once
 
 #include <stdexcept>
@@ -25,5 +26,19 @@ class ComputationError : public std::runtime_error {
 };
 
 inline constexpr int kComputationErrorExitStatus = 3;
+
+// An internal invariant that does not hold: a bug, never bad input.
+[[noreturn]] inline void requireFailed(const char* condition, const char* file, int line) {
+  throw std::logic_error(std::string("internal check failed: ") + condition + " (" + file + ":" +
+                         std::to_string(line) + ")");
+}
+
+}  // namespace radquad
+
+// Checks an internal invariant in every build (unlike assert, which release builds drop).
+#define RADQUAD_REQUIRE(condition) \
+  ((condition) ? void(0) : ::radquad::requireFailed(#condition, __FILE__, __LINE__))
+
+namespace radquad {
 
 }  // namespace radquad

@@ -1,8 +1,8 @@
 #include "kernel/occluder_scene.h"
 
+#include "kernel/input_error.h"
+
 #include <algorithm>
-#include <cassert>
-#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -11,12 +11,26 @@
 namespace radquad {
 namespace {
 
+// The last message Embree reported on this thread (its error callback runs on the thread
+// whose call failed), for checkEmbree.
+thread_local std::string lastEmbreeMessage;
+
 void reportEmbreeError(void*, RTCError code, const char* message) {
-  std::fprintf(stderr, "radquad: Embree error %d: %s\n", static_cast<int>(code),
-               message ? message : "");
+  lastEmbreeMessage = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                      (message ? message : "");
 }
 
 }  // namespace
+
+void checkEmbree(const char* step) {
+  const RTCError code = rtcGetDeviceError(embreeDevice());
+  if (code == RTC_ERROR_NONE) return;
+  std::string message = lastEmbreeMessage.empty()
+                            ? "Embree error " + std::to_string(static_cast<int>(code))
+                            : lastEmbreeMessage;
+  lastEmbreeMessage.clear();
+  throw ComputationError(std::string(step) + ": " + message);
+}
 
 RTCDevice embreeDevice() {
   static RTCDevice device = [] {
@@ -53,33 +67,9 @@ void SegmentBatch::push(const Eigen::Vector3d& origin, const Eigen::Vector3d& di
   set(k, origin.x(), origin.y(), origin.z(), direction.x(), direction.y(), direction.z());
 }
 
-void SegmentBatch::assign(std::size_t count, const float* originX, const float* originY,
-                          const float* originZ, const float* directionX, const float* directionY,
-                          const float* directionZ) {
-  resize(count);
-  for (std::size_t p = 0; p < packetCount(); ++p) {
-    const std::size_t start = p * 16;
-    const std::size_t lanes = std::min<std::size_t>(16, count - start);
-    RTCRay16& packet = packets_[p];
-    std::copy_n(originX + start, lanes, packet.org_x);
-    std::copy_n(originY + start, lanes, packet.org_y);
-    std::copy_n(originZ + start, lanes, packet.org_z);
-    std::copy_n(directionX + start, lanes, packet.dir_x);
-    std::copy_n(directionY + start, lanes, packet.dir_y);
-    std::copy_n(directionZ + start, lanes, packet.dir_z);
-    std::fill_n(packet.tfar, 16, 1.0f - kSegmentEpsilon);
-  }
-}
-
-void SegmentBatch::farEnds(float* far) const {
-  for (std::size_t p = 0; p < packetCount(); ++p) {
-    const std::size_t start = p * 16;
-    std::copy_n(packets_[p].tfar, std::min<std::size_t>(16, count_ - start), far + start);
-  }
-}
-
 OccluderScene::OccluderScene() {
   scene_ = rtcNewScene(embreeDevice());
+  checkEmbree("creating an occluder scene");
   // Robust traversal: slats and meshes share edges, and a ray through a shared edge must
   // not slip between two triangles.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
@@ -92,24 +82,35 @@ OccluderScene::~OccluderScene() {
 
 RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch) {
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
+  checkEmbree("creating a parallelogram geometry");
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
+  if (vertices == nullptr) {
+    rtcReleaseGeometry(geometry);
+    checkEmbree("allocating a parallelogram's vertices");
+  }
   const std::array<Eigen::Vector3d, 4> corners = patch.corners();
   for (int c = 0; c < 4; ++c) {
     for (int axis = 0; axis < 3; ++axis) vertices[3 * c + axis] = float(corners[c][axis]);
   }
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
+  if (indices == nullptr) {
+    rtcReleaseGeometry(geometry);
+    checkEmbree("allocating a parallelogram's index");
+  }
   for (unsigned c = 0; c < 4; ++c) indices[c] = c;
   rtcCommitGeometry(geometry);
+  checkEmbree("committing a parallelogram geometry");
   return geometry;
 }
 
 unsigned OccluderScene::addParallelogram(const Patch& patch) {
-  assert(!committed_);
+  RADQUAD_REQUIRE(!committed_);
   RTCGeometry geometry = newParallelogramGeometry(embreeDevice(), patch);
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);
+  checkEmbree("adding a parallelogram");
   ++geometryCount_;
   ++primitiveCount_;
   const std::array<Eigen::Vector3d, 4> corners = patch.corners();
@@ -120,7 +121,7 @@ unsigned OccluderScene::addParallelogram(const Patch& patch) {
 unsigned OccluderScene::addTriangleMesh(
     const std::vector<Eigen::Vector3d>& vertices,
     const std::vector<std::array<std::uint32_t, 3>>& triangles) {
-  assert(!committed_);
+  RADQUAD_REQUIRE(!committed_);
   for (const auto& triangle : triangles) {
     for (std::uint32_t index : triangle) {
       if (index >= vertices.size()) {
@@ -130,20 +131,30 @@ unsigned OccluderScene::addTriangleMesh(
     }
   }
   RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  checkEmbree("creating a triangle mesh");
   auto* vertexBuffer = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  if (vertexBuffer == nullptr) {
+    rtcReleaseGeometry(geometry);
+    checkEmbree("allocating a triangle mesh's vertices");
+  }
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     for (int axis = 0; axis < 3; ++axis) vertexBuffer[3 * v + axis] = float(vertices[v][axis]);
   }
   auto* indexBuffer = static_cast<unsigned*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                               3 * sizeof(unsigned), triangles.size()));
+  if (indexBuffer == nullptr) {
+    rtcReleaseGeometry(geometry);
+    checkEmbree("allocating a triangle mesh's indices");
+  }
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     for (int corner = 0; corner < 3; ++corner) indexBuffer[3 * t + corner] = triangles[t][corner];
   }
   rtcCommitGeometry(geometry);
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   rtcReleaseGeometry(geometry);
+  checkEmbree("adding a triangle mesh");
   ++geometryCount_;
   primitiveCount_ += triangles.size();
   for (const auto& triangle : triangles) {
@@ -154,11 +165,12 @@ unsigned OccluderScene::addTriangleMesh(
 
 void OccluderScene::commit() {
   rtcCommitScene(scene_);
+  checkEmbree("building the occluder scene");
   committed_ = true;
 }
 
 void OccluderScene::trace(SegmentBatch& segments) const {
-  assert(committed_ || empty());
+  RADQUAD_REQUIRE(committed_ || empty());
   if (empty()) return;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -185,7 +197,7 @@ void OccluderScene::testSegments(const SegmentBatch& segments, std::uint8_t* vis
 
 int OccluderScene::closestHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                               double& t) const {
-  assert(committed_ || empty());
+  RADQUAD_REQUIRE(committed_ || empty());
   if (empty()) return -1;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

@@ -41,12 +41,6 @@ class SegmentBatch {
     packet.dir_z[lane] = float(dz);
     packet.tfar[lane] = 1.0f - kSegmentEpsilon;  // Embree sets it to -inf when blocked
   }
-  // Sets segments 0..count-1 from structure-of-arrays columns, 16 lanes at a time.
-  void assign(std::size_t count, const float* originX, const float* originY, const float* originZ,
-              const float* directionX, const float* directionY, const float* directionZ);
-  // After OccluderScene::trace: writes each segment's far end to far[k]; negative when the
-  // segment was blocked.
-  void farEnds(float* far) const;
   // After OccluderScene::trace: whether segment k was unobstructed.
   bool visible(std::size_t k) const { return packets_[k >> 4].tfar[k & 15] >= 0.0f; }
 
@@ -106,8 +100,14 @@ class OccluderScene {
 // The process-wide Embree device (created on first use).
 RTCDevice embreeDevice();
 
+// Throws ComputationError naming `step` and Embree's message when the last Embree call on
+// this thread failed (out of memory, an invalid argument, a failed build); Embree reports
+// errors through a callback and a per-thread error code, never by exception.
+void checkEmbree(const char* step);
+
 // A committed Embree quad geometry of one parallelogram (corners o, o+a, o+a+b, o+b in float),
-// not yet attached to a scene: the one way patches become Embree geometry.
+// not yet attached to a scene: the one way patches become Embree geometry. Throws
+// ComputationError when Embree fails (checkEmbree).
 RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch);
 
 }  // namespace radquad

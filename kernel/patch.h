@@ -1,4 +1,4 @@
-// A planar parallelogram patch (DESIGN.md, "Mathematical conventions"):
+// A planar parallelogram patch (docs/design.md, "Conventions"):
 //   x(u,v) = origin + u edgeU + v edgeV,  (u,v) in [0,1]^2,
 //   normal n = (edgeU x edgeV) / |edgeU x edgeV|,  area A = |edgeU x edgeV|.
 // A patch is one-sided: it emits and receives on the side its normal points to.

@@ -1,6 +1,6 @@
 // Quadrature points handed to the kernel. The kernel knows no rule: it integrates whatever
 // weighted points it is given (weights sum to 1 over the unit square or the unit 4-cube;
-// DESIGN.md, "Mathematical conventions").
+// docs/design.md, "Conventions").
 #pragma once
 
 #include <cstddef>

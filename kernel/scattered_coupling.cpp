@@ -1,5 +1,5 @@
 // The scattered coupling path: a general list of 4D points, contracted in blocks of 256 so the
-// basis values stay in cache (DESIGN.md, "Mathematical conventions"; kernel/coupling.h,
+// basis values stay in cache (docs/design.md, "Conventions"; kernel/coupling.h,
 // kernel/block_contraction.h).
 #include <algorithm>
 #include <cassert>

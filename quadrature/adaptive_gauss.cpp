@@ -1,7 +1,7 @@
 #include "quadrature/adaptive_gauss.h"
+#include "kernel/input_error.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
 #include "quadrature/random/philox.h"
@@ -31,8 +31,8 @@ int pointsForAxis(const double* orderMagnitudes, int orders, double errThres) {
 }
 
 GaussRuleChoice chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input) {
-  assert(input.degree >= 0 && input.degree <= kMaxAdaptiveDegree);
-  assert(input.magnitudes != nullptr);
+  RADQUAD_REQUIRE(input.degree >= 0 && input.degree <= kMaxAdaptiveDegree);
+  RADQUAD_REQUIRE(input.magnitudes != nullptr);
   double alongU[kMaxAdaptiveDegree + 1], alongV[kMaxAdaptiveDegree + 1];
   axisMagnitudes(input.degree, input.magnitudes, alongU, alongV);
   const int full = input.degree + 1;

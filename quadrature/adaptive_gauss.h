@@ -1,5 +1,5 @@
 // The adaptive choice of Gauss product rules for one link (Gershbein 1995, section 5 and
-// Figure 4, "ChooseGaussRules"; DESIGN.md, "The adaptive method").
+// Figure 4, "ChooseGaussRules"; docs/design.md, "The solver").
 //
 // With a degree-d basis, the receiver gets the (d+1)-point Gauss rule on both of its axes
 // (nothing is known about the functions it will be projected on). Along each source axis,

@@ -23,7 +23,7 @@ struct ParametrisedFamily {
   std::function<std::shared_ptr<const Rule>(const std::string&)> make;
 };
 
-// The catalogue of DESIGN.md, "The paper's rules".
+// The catalogue of docs/design.md, "The kernel and the rules".
 const std::vector<NamedRule>& namedCatalogue() {
   static const std::vector<NamedRule> catalogue = {
       {"FullGauss",

@@ -1,5 +1,5 @@
 // The Rule interface: a quadrature rule on [0,1]^4 with coordinates (s, t, u, v) =
-// (receiver u, receiver v, source u, source v) and weights summing to 1 (DESIGN.md).
+// (receiver u, receiver v, source u, source v) and weights summing to 1 (docs/design.md).
 //
 // A rule is data with a name, a sample count, a declared polynomial degree (none for random
 // rules) and a citation. Product rules keep their structure: they hand out a receiver point
@@ -30,7 +30,7 @@ class Rule {
  public:
   virtual ~Rule() = default;
 
-  // The name users type, as in DESIGN.md, "The paper's rules" (e.g. "FullGauss", "Gauss:3x3x2x2").
+  // The name users type, as in docs/design.md, "The kernel and the rules" (e.g. "FullGauss", "Gauss:3x3x2x2").
   virtual std::string name() const = 0;
   // Kernel evaluations per link.
   virtual std::size_t sampleCount() const = 0;

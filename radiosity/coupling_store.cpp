@@ -1,9 +1,9 @@
 #include "radiosity/coupling_store.h"
+#include "kernel/input_error.h"
 
 #include <sys/mman.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -31,7 +31,7 @@ CouplingStore::CouplingStore(int functions) : functions_(functions) {
 }
 
 int CouplingStore::allocate(int columns) {
-  assert(columns >= 1 && columns <= functions_);
+  RADQUAD_REQUIRE(columns >= 1 && columns <= functions_);
   Width& width = widths_[std::size_t(columns - 1)];
   if (!width.released.empty()) {
     const int slot = width.released.back();
@@ -55,8 +55,8 @@ int CouplingStore::allocate(int columns) {
 }
 
 void CouplingStore::release(int columns, int slot) {
-  assert(columns >= 1 && columns <= functions_);
-  assert(slot >= 0 && std::size_t(slot) < widths_[std::size_t(columns - 1)].size);
+  RADQUAD_REQUIRE(columns >= 1 && columns <= functions_);
+  RADQUAD_REQUIRE(slot >= 0 && std::size_t(slot) < widths_[std::size_t(columns - 1)].size);
   widths_[std::size_t(columns - 1)].released.push_back(slot);
 }
 

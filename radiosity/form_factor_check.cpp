@@ -1,5 +1,5 @@
 // The solver's check that its couplings are physical. A link's form factor is
-// F = K[0][0] sqrt(A_S / A_R) (DESIGN.md): the mean, over the receiver element, of the point
+// F = K[0][0] sqrt(A_S / A_R) (docs/design.md): the mean, over the receiver element, of the point
 // form factor to the source element. For an element R, the links received by R and by its
 // descendants carry energy from sources that do not overlap (a refinement replaces a link by
 // links to the parts of one of its elements), so the area-weighted mean over R of their form

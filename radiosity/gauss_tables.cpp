@@ -1,6 +1,6 @@
 #include "radiosity/gauss_tables.h"
+#include "kernel/input_error.h"
 
-#include <cassert>
 
 #include "quadrature/gauss_legendre.h"
 
@@ -25,8 +25,8 @@ GaussTables::GaussTables(int degree) {
 }
 
 const GaussSide& GaussTables::side(int pointsU, int pointsV) const {
-  assert(pointsU >= 1 && pointsU <= kMaxPointsPerAxis);
-  assert(pointsV >= 1 && pointsV <= kMaxPointsPerAxis);
+  RADQUAD_REQUIRE(pointsU >= 1 && pointsU <= kMaxPointsPerAxis);
+  RADQUAD_REQUIRE(pointsV >= 1 && pointsV <= kMaxPointsPerAxis);
   return sides_[std::size_t((pointsU - 1) * kMaxPointsPerAxis + (pointsV - 1))];
 }
 

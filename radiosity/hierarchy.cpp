@@ -1,6 +1,6 @@
 #include "radiosity/hierarchy.h"
+#include "kernel/input_error.h"
 
-#include <cassert>
 #include <cmath>
 
 #include "kernel/legendre_basis.h"
@@ -141,7 +141,7 @@ void accumulateDifference(const Hierarchy& a, int ea, const Hierarchy& b, int eb
 }  // namespace
 
 std::pair<double, double> Hierarchy::l2Difference(const Hierarchy& other, int points) const {
-  assert(scene_->patches.size() == other.scene().patches.size());
+  RADQUAD_REQUIRE(scene_->patches.size() == other.scene().patches.size());
   double difference = 0.0, norm = 0.0;
   for (std::size_t p = 0; p < scene_->patches.size(); ++p) {
     accumulateDifference(*this, root(int(p)), other, other.root(int(p)), points, difference, norm);

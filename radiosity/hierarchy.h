@@ -1,6 +1,6 @@
 // The element hierarchy: one quadtree per patch. An element is a sub-parallelogram of its
 // patch, [u0, u0+size] x [v0, v0+size] of the patch's parameter square, with its own
-// orthonormal tensor Legendre basis of degree d (DESIGN.md, "Mathematical conventions",
+// orthonormal tensor Legendre basis of degree d (docs/design.md, "Conventions",
 // with the element's own area) and RGB coefficients for
 //   radiosity B   (what the element shows and sends),
 //   gathered  E   (the irradiance coefficients arriving through the element's own links),

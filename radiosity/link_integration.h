@@ -1,4 +1,4 @@
-// Integration of one link's coupling K (DESIGN.md) with a Gauss product rule
+// Integration of one link's coupling K (docs/design.md) with a Gauss product rule
 // {Rs, Rt, Su, Sv}, with a subdivision near the kernel's singularity.
 //
 // Where two elements touch (a shared edge or corner, a block standing on a floor), the

@@ -331,7 +331,7 @@ void Solver::projectSources() {
   });
 }
 
-// E_R = sum over R's links of K B_S (DESIGN.md: E_a = sum_b K[a][b] B_b), with every
+// E_R = sum over R's links of K B_S (docs/design.md: E_a = sum_b K[a][b] B_b), with every
 // source's radiosity from the previous iteration (Jacobi).
 void Solver::gather() {
   projectSources();

@@ -25,7 +25,7 @@ struct Solver::Impl {
     for (const ScenePatch& patch : scene.patches) occluders.addParallelogram(patch.patch);
     occluders.commit();
   }
-  OccluderScene occluders;  // every patch; a link's own patches never block it (DESIGN.md)
+  OccluderScene occluders;  // every patch; a link's own patches never block it (docs/design.md)
   GaussTables tables;
   VisibilityClassifier classifier;
   tbb::enumerable_thread_specific<LinkIntegrator> integrators;

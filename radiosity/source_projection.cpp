@@ -1,6 +1,6 @@
 #include "radiosity/source_projection.h"
+#include "kernel/input_error.h"
 
-#include <cassert>
 #include <cstring>
 
 #include "kernel/legendre_basis.h"
@@ -38,7 +38,7 @@ SourceProjection::SourceProjection(int degree, DroppedOrders dropped)
 }
 
 double SourceProjection::matrix(int points, int p, int pPrime) const {
-  assert(points >= 1 && points <= degree_ + 1 && p < points && pPrime <= degree_);
+  RADQUAD_REQUIRE(points >= 1 && points <= degree_ + 1 && p < points && pPrime <= degree_);
   return matrices_[std::size_t(points - 1)][std::size_t(p * (degree_ + 1) + pPrime)];
 }
 
@@ -47,7 +47,7 @@ void SourceProjection::project(int pointsU, int pointsV, const double* radiosity
   const int orders = degree_ + 1;
   const std::size_t functions = std::size_t(orders * orders);
   const std::size_t rows = std::size_t(pointsU * pointsV);
-  assert(pointsU >= 1 && pointsU <= orders && pointsV >= 1 && pointsV <= orders);
+  RADQUAD_REQUIRE(pointsU >= 1 && pointsU <= orders && pointsV >= 1 && pointsV <= orders);
   const double* mu = matrices_[std::size_t(pointsU - 1)].data();
   const double* mv = matrices_[std::size_t(pointsV - 1)].data();
   for (int c = 0; c < 3; ++c) {

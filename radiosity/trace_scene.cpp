@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "kernel/occluder_scene.h"  // embreeDevice() and newParallelogramGeometry() only
+#include "kernel/occluder_scene.h"  // embreeDevice(), checkEmbree(), newParallelogramGeometry()
 
 namespace radquad {
 namespace {
@@ -69,8 +69,10 @@ TraceScene::TraceScene(const Scene& scene) {
     RTCGeometry geometry = newParallelogramGeometry(device, patch);
     rtcAttachGeometryByID(scene_, geometry, unsigned(k));
     rtcReleaseGeometry(geometry);
+    checkEmbree("adding a patch to the traced scene");
   }
   rtcCommitScene(scene_);
+  checkEmbree("building the traced scene");
 }
 
 TraceScene::~TraceScene() {

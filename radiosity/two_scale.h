@@ -1,4 +1,4 @@
-// Exact two-scale relations of the orthonormal tensor Legendre basis (DESIGN.md,
+// Exact two-scale relations of the orthonormal tensor Legendre basis (docs/design.md,
 // "Mathematical conventions") between an element and its four quadtree children.
 //
 // Child c = 2*cu + cv covers u in [cu/2, (cu+1)/2], v in [cv/2, (cv+1)/2] of its parent,

@@ -1,4 +1,4 @@
-// The exact-visibility gold (docs/design.md, "The exact gold"): a deterministic coupling of
+// The exact-visibility gold (docs/design.md, "The gold"): a deterministic coupling of
 // any link, occluded or not, with an estimate of its absolute error.
 //
 //   K[a][b] = sqrt(A_r / A_s) int_{[0,1]^2} phi_a(s, t) I_b(x(s, t)) ds dt,

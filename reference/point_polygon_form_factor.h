@@ -4,7 +4,7 @@
 //   F(x -> P) = (1/2pi) sum_i  n . (R_i x R_{i+1}) / |R_i x R_{i+1}|  gamma_i,
 // R_i = p_i - x the vectors to the polygon's vertices, gamma_i the angle between R_i and
 // R_{i+1}. It equals int_P cos(theta) cos(theta') / (pi r^2) dA' when all of P lies in front
-// of both the point's plane and P's own (one-sided) plane. The clamped cosines of DESIGN.md
+// of both the point's plane and P's own (one-sided) plane. The clamped cosines of docs/design.md
 // are honoured exactly: the polygon is first clipped to the half-space in front of the
 // point's plane (points behind contribute zero), and a point behind the source's plane sees
 // nothing of it.

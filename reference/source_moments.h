@@ -1,4 +1,4 @@
-// The inner integral of the exact gold (docs/design.md, "The exact gold"): for a receiver
+// The inner integral of the exact gold (docs/design.md, "The gold"): for a receiver
 // point x with unit normal n_r and the part V of the source it sees (exact_visibility.h),
 //   I_b(x) = int_V cos(theta) cos(theta') / (pi r^2) phi_b(u(y), v(y)) dA(y)
 // for every source function b of degree d (phi_b the unit-square tensor Legendre basis).

@@ -1,4 +1,4 @@
-// Scenario generation for the study (DESIGN.md, "The study"): pairs of patches drawn
+// Scenario generation for the study (docs/design.md, "The study"): pairs of patches drawn
 // deterministically from a seed over ranges of element size, distance, relative
 // orientation and occluder complexity. Each candidate link is a pure function of
 // (ranges, class, seed); whether a partial candidate qualifies (visible fraction in

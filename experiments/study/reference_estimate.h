@@ -1,4 +1,4 @@
-// The references the study's errors are measured against (DESIGN.md, "The study"):
+// The references the study's errors are measured against (docs/design.md, "The study"):
 // - the paper's reference, Stratified:k with k = 10 (10,000 samples), with its own standard
 //   error from independent replicates (reference/stratified_reference.h);
 // - on request, the gold reference (reference/gold_reference.h).

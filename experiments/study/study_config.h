@@ -53,7 +53,7 @@ struct StudyConfig {
   GeometryRanges geometry;
   std::optional<SceneLinkOptions> sceneLinks;
 
-  // The basis degree of the figure: 0 for Figure 1, 2 for Figure 2 (DESIGN.md, "The study").
+  // The basis degree of the figure: 0 for Figure 1, 2 for Figure 2 (docs/design.md, "The study").
   int degree() const { return figure == StudyFigure::fig1 ? 0 : 2; }
 };
 

@@ -1,4 +1,4 @@
-// The error metrics of the study (DESIGN.md, "The study") and their summary statistics.
+// The error metrics of the study (docs/design.md, "The study") and their summary statistics.
 #pragma once
 
 #include <Eigen/Core>

@@ -6,7 +6,7 @@
 // the disposition of points in numerical integration formulas", MTAC 11, 1957).
 //
 // Both are stated on [-1,1]^n with weights normalised to sum to 1 and are mapped affinely to
-// [0,1]^4 with coordinates (s, t, u, v) (DESIGN.md, "The paper's rules").
+// [0,1]^4 with coordinates (s, t, u, v) (docs/design.md, "The kernel and the rules").
 //
 // | name         | samples | degree | definition                                             |
 // |--------------|---------|--------|--------------------------------------------------------|

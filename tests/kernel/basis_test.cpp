@@ -1,4 +1,4 @@
-// The orthonormal shifted Legendre basis of DESIGN.md.
+// The orthonormal shifted Legendre basis of docs/design.md.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -99,7 +99,7 @@ TEST(Coupling, ReciprocityTransposes) {
   }
 }
 
-// With d = 0, K[0][0] = F sqrt(A_r/A_s) (DESIGN.md).
+// With d = 0, K[0][0] = F sqrt(A_r/A_s) (docs/design.md).
 TEST(Coupling, ConstantCouplingIsScaledFormFactor) {
   const Link link{opposedReceiver(0.5, 2), opposedSource(1.5, 0.4, 1), nullptr};
   const auto integral = PreparedRule(findRule("FullGauss"), 0).integrate(link);

@@ -33,7 +33,11 @@ TEST(OccluderScene, TriangleMeshBlocks) {
   EXPECT_EQ(scene.primitiveCount(), 1u);
   EXPECT_FALSE(scene.segmentVisible({0.2, 0.2, 0}, {0.2, 0.2, 2}));
   EXPECT_TRUE(scene.segmentVisible({0.8, 0.8, 0}, {0.8, 0.8, 2}));  // beyond the hypotenuse
-  EXPECT_THROW(scene.addTriangleMesh({{0, 0, 0}}, {{0, 1, 2}}), std::invalid_argument);
+  OccluderScene fresh;
+  EXPECT_THROW(fresh.addTriangleMesh({{0, 0, 0}}, {{0, 1, 2}}), std::invalid_argument);
+  // Adding to a committed scene is a bug, caught in every build.
+  EXPECT_THROW(scene.addTriangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}),
+               std::logic_error);
 }
 
 TEST(OccluderScene, PacketsOfManySegmentsMatchSingleTests) {

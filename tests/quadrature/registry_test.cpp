@@ -1,4 +1,4 @@
-// The registry: the paper's rule names and sample counts (DESIGN.md, "The paper's rules"),
+// The registry: the paper's rule names and sample counts (docs/design.md, "The kernel and the rules"),
 // parametrised forms, and the message for unknown names.
 #include <gtest/gtest.h>
 

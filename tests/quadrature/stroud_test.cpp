@@ -1,4 +1,4 @@
-// Stroud Cn 5-7 and the hierarchical Cn 3-1: the facts of DESIGN.md, "The paper's rules".
+// Stroud Cn 5-7 and the hierarchical Cn 3-1: the facts of docs/design.md, "The kernel and the rules".
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -43,7 +43,7 @@ TEST(StudyMetrics, L1BoundWeighsEachReceiverFunctionByItsAbsoluteIntegral) {
 }
 
 TEST(StudyMetrics, L1BoundOfAConstantBasisIsTheAbsoluteErrorPerRootArea) {
-  // With d = 0, U_0 = |dK00| / sqrt(A_r) = |dF| sqrt(A_r/A_s)/sqrt(A_r) (DESIGN.md).
+  // With d = 0, U_0 = |dK00| / sqrt(A_r) = |dF| sqrt(A_r/A_s)/sqrt(A_r) (docs/design.md).
   Eigen::MatrixXd difference(1, 1);
   difference << -0.3;
   EXPECT_NEAR(l1ErrorBound(difference, 9.0)[0], 0.1, 1e-15);
