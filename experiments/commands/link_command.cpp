@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "experiments/rule_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/json_input.h"
 #include "experiments/trace_report.h"
@@ -69,7 +70,7 @@ void runLink(LinkOptions options) {
                      std::to_string(options.trials) + ": the last seed would pass 2^64 - 1");
   }
   const LinkDescription description = readLinkFile(options.linkPath);
-  const PreparedRule prepared(findRule(options.ruleName), options.degree);
+  const PreparedRule prepared(findAnyRule(options.ruleName), options.degree);
   const SceneLink sceneLink = buildSceneLink(description);
   const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
   if (!integral.coupling.allFinite() || !std::isfinite(integral.formFactor)) {

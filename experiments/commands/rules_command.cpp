@@ -1,10 +1,14 @@
-// `radquad rules [--json]`: lists the registered rules.
+// `radquad rules [--json]`: lists the registered rules; `radquad rules --dump NAME [--seed S]`
+// prints one rule's points in the rule-file format (experiments/rule_file.h).
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "experiments/commands/commands.h"
+#include "experiments/json_input.h"
+#include "experiments/rule_file.h"
+#include "experiments/trace_report.h"
 #include "quadrature/registry.h"
 
 namespace radquad {
@@ -41,12 +45,31 @@ void runRules(bool asJson) {
 
 }  // namespace
 
+struct RulesOptions {
+  bool asJson = false;
+  std::string dump;
+  std::string seedText = "0";
+};
+
 void addRulesCommand(CLI::App& app) {
-  auto asJson = std::make_shared<bool>(false);
+  auto options = std::make_shared<RulesOptions>();
   CLI::App* command = app.add_subcommand("rules", "List the registered quadrature rules");
-  command->add_flag("--json", *asJson,
+  command->add_flag("--json", options->asJson,
                     "Print a JSON array of {name, samples, degree, family, citation}");
-  command->callback([asJson] { runRules(*asJson); });
+  command->add_option("--dump", options->dump,
+                      "Print one rule's points and weights in the rule-file format (File:PATH "
+                      "reads it back); a random rule's draw for --seed");
+  command->add_option("--seed", options->seedText, "Seed of a random rule's draw, a decimal 0..2^64-1")
+      ->capture_default_str();
+  command->callback([options] {
+    if (options->dump.empty()) {
+      runRules(options->asJson);
+      return;
+    }
+    const std::uint64_t seed =
+        parseDecimalOption(options->seedText, "--seed", 0, ~std::uint64_t(0));
+    std::cout << ruleToJson(*findAnyRule(options->dump), seed).dump(1) << "\n";
+  });
 }
 
 }  // namespace radquad

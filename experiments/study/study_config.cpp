@@ -1,3 +1,4 @@
+#include "experiments/rule_file.h"
 #include "experiments/study/study_config.h"
 
 #include "experiments/json_input.h"
@@ -19,7 +20,7 @@ std::string ruleName(const nlohmann::json& value, const std::string& where) {
   if (!value.is_string()) throw InputError(where + ": expected a rule name (a string)");
   const std::string name = value.get<std::string>();
   try {
-    findRule(name);
+    findAnyRule(name);
   } catch (const InputError& error) {
     throw InputError(where + ": " + error.what());
   }

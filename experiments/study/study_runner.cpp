@@ -1,3 +1,4 @@
+#include "experiments/rule_file.h"
 #include "experiments/study/study_runner.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -289,7 +290,7 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
     run.sceneOccludedLinks = pool->occludedLinks();
   }
   for (const std::string& name : config.rules) {
-    scorers.rules.emplace_back(findRule(name), degree);
+    scorers.rules.emplace_back(findAnyRule(name), degree);
     const Rule& rule = scorers.rules.back().rule();
     const int trials = rule.isRandom() ? config.trials : 1;
     scorers.trials.push_back(trials);

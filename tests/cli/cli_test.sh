@@ -165,6 +165,22 @@ PY
 check triangle_half_blocked $?
 expect_error bad_triangle "occluders[0].triangle: expected an array of 3 points" link "$fixtures/bad_triangle.json" --rule FullGauss
 
+# Rules from files: `rules --dump` writes a rule, `File:PATH` reads it back, and the link's
+# coupling is the registered rule's, digit for digit; a bad file is named with exit status 2.
+"$radquad" rules --dump FullGauss >"$scratch/fullgauss_rule.json"
+check dump_status $?
+"$radquad" link "$fixtures/good_link.json" --rule FullGauss --degree 1 >"$scratch/registered.json"
+"$radquad" link "$fixtures/good_link.json" --rule "File:$scratch/fullgauss_rule.json" --degree 1 >"$scratch/from_file.json"
+"$python" - "$scratch/registered.json" "$scratch/from_file.json" <<'PY'
+import json, sys
+a, b = (json.load(open(path)) for path in sys.argv[1:3])
+assert a["coupling"] == b["coupling"], (a["coupling"], b["coupling"])
+PY
+check file_rule_round_trip $?
+printf '{"name": "Half", "points": [[0.5, 0.5, 0.5, 0.5]], "weights": [0.5]}' >"$scratch/half_rule.json"
+expect_error file_rule_weights "half_rule.json: weights sum to" link "$fixtures/good_link.json" --rule "File:$scratch/half_rule.json"
+expect_error file_rule_missing "no_such_rule.json" link "$fixtures/good_link.json" --rule "File:$scratch/no_such_rule.json"
+
 for command in "" link rules reference; do
   "$radquad" $command --help >/dev/null 2>&1
   check "help_$command" $?

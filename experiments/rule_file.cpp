@@ -1,0 +1,140 @@
+#include "experiments/rule_file.h"
+
+#include <string>
+#include <vector>
+
+#include "experiments/json_input.h"
+#include "kernel/input_error.h"
+#include "quadrature/registry.h"
+#include "quadrature/rules/data_rule.h"
+
+namespace radquad {
+namespace {
+
+std::vector<double> numbers(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_array()) throw InputError(where + ": expected an array of numbers");
+  std::vector<double> out;
+  for (std::size_t k = 0; k < value.size(); ++k) {
+    out.push_back(finiteNumber(value[k], where + "[" + std::to_string(k) + "]"));
+  }
+  return out;
+}
+
+// Points of `dimension` coordinates and their weights, as columns.
+std::vector<std::vector<double>> pointColumns(const nlohmann::json& points, std::size_t dimension,
+                                              const std::string& where) {
+  if (!points.is_array()) throw InputError(where + ": expected an array of points");
+  std::vector<std::vector<double>> columns(dimension);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const std::string name = where + "[" + std::to_string(k) + "]";
+    const std::vector<double> point = numbers(points[k], name);
+    if (point.size() != dimension) {
+      throw InputError(name + ": expected " + std::to_string(dimension) + " coordinates");
+    }
+    for (std::size_t axis = 0; axis < dimension; ++axis) columns[axis].push_back(point[axis]);
+  }
+  return columns;
+}
+
+PatchSamples patchSet(const nlohmann::json& value, const std::string& where) {
+  checkKeys(value, where, {"points", "weights"}, {"points", "weights"});
+  const auto columns = pointColumns(value["points"], 2, where + ".points");
+  PatchSamples out;
+  out.u = columns[0];
+  out.v = columns[1];
+  out.weight = numbers(value["weights"], where + ".weights");
+  if (out.weight.size() != out.u.size()) {
+    throw InputError(where + ": " + std::to_string(out.u.size()) + " points but " +
+                     std::to_string(out.weight.size()) + " weights");
+  }
+  return out;
+}
+
+nlohmann::json patchSetJson(const PatchSamples& samples) {
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t k = 0; k < samples.size(); ++k) points.push_back({samples.u[k], samples.v[k]});
+  return {{"points", points}, {"weights", samples.weight}};
+}
+
+}  // namespace
+
+std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std::string& where) {
+  checkKeys(value, where, {"name", "degree", "citation", "points", "weights", "receiver", "source"},
+            {"name"});
+  DataRuleSpec spec;
+  if (!value["name"].is_string()) throw InputError(where + ": name must be a string");
+  spec.name = value["name"].get<std::string>();
+  if (value.contains("degree") && !value["degree"].is_null()) {
+    if (!value["degree"].is_number_integer()) {
+      throw InputError(where + ": degree must be an integer or null");
+    }
+    spec.degree = value["degree"].get<int>();
+  }
+  if (value.contains("citation")) {
+    if (!value["citation"].is_string()) throw InputError(where + ": citation must be a string");
+    spec.citation = value["citation"].get<std::string>();
+  }
+  const bool product = value.contains("receiver") || value.contains("source");
+  const bool scattered = value.contains("points") || value.contains("weights");
+  if (product == scattered) {
+    throw InputError(where + ": give either points and weights, or receiver and source");
+  }
+  spec.product = product;
+  if (product) {
+    if (!value.contains("receiver") || !value.contains("source")) {
+      throw InputError(where + ": a product rule needs both receiver and source");
+    }
+    spec.receiver = patchSet(value["receiver"], where + ": receiver");
+    spec.source = patchSet(value["source"], where + ": source");
+  } else {
+    if (!value.contains("points") || !value.contains("weights")) {
+      throw InputError(where + ": a rule of 4D points needs both points and weights");
+    }
+    const auto columns = pointColumns(value["points"], 4, where + ": points");
+    spec.points.s = columns[0];
+    spec.points.t = columns[1];
+    spec.points.u = columns[2];
+    spec.points.v = columns[3];
+    spec.points.weight = numbers(value["weights"], where + ": weights");
+    if (spec.points.weight.size() != spec.points.s.size()) {
+      throw InputError(where + ": " + std::to_string(spec.points.s.size()) + " points but " +
+                       std::to_string(spec.points.weight.size()) + " weights");
+    }
+  }
+  return makeDataRule(std::move(spec), where);
+}
+
+std::shared_ptr<const Rule> loadRuleFile(const std::filesystem::path& path) {
+  return parseRuleJson(readJsonFile(path), path.string());
+}
+
+std::shared_ptr<const Rule> findAnyRule(std::string_view name) {
+  constexpr std::string_view prefix = "File:";
+  if (name.substr(0, prefix.size()) == prefix) {
+    const std::string_view path = name.substr(prefix.size());
+    if (path.empty()) throw InputError("rule 'File:': expected File:PATH");
+    return loadRuleFile(std::filesystem::path(std::string(path)));
+  }
+  return findRule(name);
+}
+
+nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed) {
+  const RuleSamples samples = rule.samples(seed);
+  const auto degree = rule.degree();
+  nlohmann::json out = {{"name", rule.name()},
+                        {"degree", degree ? nlohmann::json(*degree) : nlohmann::json(nullptr)},
+                        {"citation", rule.citation()}};
+  if (samples.isProduct) {
+    out["receiver"] = patchSetJson(samples.receiver);
+    out["source"] = patchSetJson(samples.source);
+  } else {
+    nlohmann::json points = nlohmann::json::array();
+    const LinkSamples& p = samples.points;
+    for (std::size_t k = 0; k < p.size(); ++k) points.push_back({p.s[k], p.t[k], p.u[k], p.v[k]});
+    out["points"] = points;
+    out["weights"] = p.weight;
+  }
+  return out;
+}
+
+}  // namespace radquad

@@ -1,0 +1,38 @@
+// Rules from data files: `File:PATH` wherever a rule name is accepted (`radquad link --rule`,
+// study configs' "rules"), and `radquad rules --dump NAME` writes any rule in the same format.
+//
+// The file is JSON, either a list of 4D points
+//   {"name": N, "degree": D or null, "citation": C,
+//    "points": [[s, t, u, v], ...], "weights": [w, ...]}
+// or a product of a receiver and a source point set (integrated as a product)
+//   {"name": N, "degree": D or null, "citation": C,
+//    "receiver": {"points": [[u, v], ...], "weights": [...]},
+//    "source":   {"points": [[u, v], ...], "weights": [...]}}
+// with (s, t, u, v) = (receiver u, receiver v, source u, source v) on [0, 1]^4. "degree" and
+// "citation" may be left out. Loading checks what quadrature/rules/data_rule.h lists (values
+// finite and in [0, 1], weights summing to 1, the declared degree) and names the file and the
+// failed check (InputError, exit status 2). Such rules are deterministic: the same points for
+// every seed.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "quadrature/rule.h"
+
+namespace radquad {
+
+// Reads a rule file (above).
+std::shared_ptr<const Rule> loadRuleFile(const std::filesystem::path& path);
+std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std::string& where);
+
+// `File:PATH` loads the file; any other name goes to the registry (quadrature/registry.h).
+std::shared_ptr<const Rule> findAnyRule(std::string_view name);
+
+// A rule's points of one draw (`seed`) in the file format; a product rule stays a product.
+nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed);
+
+}  // namespace radquad

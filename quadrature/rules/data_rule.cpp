@@ -1,0 +1,142 @@
+#include "quadrature/rules/data_rule.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "kernel/input_error.h"
+
+namespace radquad {
+namespace {
+
+// phi_k(x) = sqrt(2k+1) P_k(2x - 1), by the three-term recurrence.
+double legendre(int k, double x) {
+  const double t = 2.0 * x - 1.0;
+  double previous = 1.0, current = t;
+  if (k == 0) return 1.0;
+  for (int n = 1; n < k; ++n) {
+    const double next = ((2.0 * n + 1.0) * t * current - n * previous) / (n + 1.0);
+    previous = current;
+    current = next;
+  }
+  return std::sqrt(2.0 * k + 1.0) * current;
+}
+
+void checkCoordinates(const std::vector<double>& values, const std::string& where,
+                      const char* what) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (!std::isfinite(values[k]) || values[k] < 0.0 || values[k] > 1.0) {
+      throw InputError(where + ": " + what + "[" + std::to_string(k) + "] = " +
+                       std::to_string(values[k]) + " is not in [0, 1]");
+    }
+  }
+}
+
+void checkWeights(const std::vector<double>& weights, const std::string& where,
+                  const std::string& what) {
+  const std::string label = what.empty() ? "weights" : what + " weights";
+  if (weights.empty()) throw InputError(where + ": " + label + ": no points");
+  double sum = 0.0, absolute = 0.0;
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    if (!std::isfinite(weights[k])) {
+      throw InputError(where + ": " + label + "[" + std::to_string(k) + "] is not finite");
+    }
+    sum += weights[k];
+    absolute += std::fabs(weights[k]);
+  }
+  if (std::fabs(sum - 1.0) > 1e-12 * std::max(1.0, absolute)) {
+    throw InputError(where + ": " + label + " sum to " + std::to_string(sum) + ", not 1");
+  }
+}
+
+}  // namespace
+
+std::size_t DataRule::sampleCount() const {
+  return spec_.product ? spec_.receiver.size() * spec_.source.size() : spec_.points.size();
+}
+
+RuleSamples DataRule::samples(std::uint64_t) const {
+  RuleSamples out;
+  out.isProduct = spec_.product;
+  if (spec_.product) {
+    out.receiver = spec_.receiver;
+    out.source = spec_.source;
+  } else {
+    out.points = spec_.points;
+  }
+  return out;
+}
+
+double legendreExactnessError(const LinkSamples& points, int degree) {
+  double worst = 0.0;
+  for (int a = 0; a <= degree; ++a) {
+    for (int b = 0; a + b <= degree; ++b) {
+      for (int c = 0; a + b + c <= degree; ++c) {
+        const int e = degree - a - b - c;
+        double sum = 0.0;
+        for (std::size_t k = 0; k < points.size(); ++k) {
+          sum += points.weight[k] * legendre(a, points.s[k]) * legendre(b, points.t[k]) *
+                 legendre(c, points.u[k]) * legendre(e, points.v[k]);
+        }
+        worst = std::max(worst, std::fabs(sum - (degree == 0 ? 1.0 : 0.0)));
+      }
+    }
+  }
+  return worst;
+}
+
+LinkSamples flattenedPoints(const RuleSamples& samples) {
+  if (!samples.isProduct) return samples.points;
+  LinkSamples out;
+  for (std::size_t r = 0; r < samples.receiver.size(); ++r) {
+    for (std::size_t q = 0; q < samples.source.size(); ++q) {
+      out.push(samples.receiver.u[r], samples.receiver.v[r], samples.source.u[q],
+               samples.source.v[q], samples.receiver.weight[r] * samples.source.weight[q]);
+    }
+  }
+  return out;
+}
+
+std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where) {
+  if (spec.name.empty()) throw InputError(where + ": the rule has no name");
+  if (spec.product) {
+    checkCoordinates(spec.receiver.u, where, "receiver.points u");
+    checkCoordinates(spec.receiver.v, where, "receiver.points v");
+    checkCoordinates(spec.source.u, where, "source.points u");
+    checkCoordinates(spec.source.v, where, "source.points v");
+    checkWeights(spec.receiver.weight, where, "receiver");
+    checkWeights(spec.source.weight, where, "source");
+  } else {
+    checkCoordinates(spec.points.s, where, "points s");
+    checkCoordinates(spec.points.t, where, "points t");
+    checkCoordinates(spec.points.u, where, "points u");
+    checkCoordinates(spec.points.v, where, "points v");
+    checkWeights(spec.points.weight, where, "");
+  }
+  if (spec.degree) {
+    if (*spec.degree < 0 || *spec.degree > 40) {
+      throw InputError(where + ": degree " + std::to_string(*spec.degree) +
+                       " is not in [0, 40] (or null)");
+    }
+    RuleSamples samples;
+    samples.isProduct = spec.product;
+    samples.receiver = spec.receiver;
+    samples.source = spec.source;
+    samples.points = spec.points;
+    const LinkSamples flat = flattenedPoints(samples);
+    double absolute = 0.0;
+    for (double w : flat.weight) absolute += std::fabs(w);
+    for (int degree = 0; degree <= *spec.degree; ++degree) {
+      const double error = legendreExactnessError(flat, degree);
+      if (error > 1e-10 * absolute) {
+        throw InputError(where + ": the rule is declared exact to degree " +
+                         std::to_string(*spec.degree) + " but is not exact at degree " +
+                         std::to_string(degree) + " (largest error over the tensor Legendre "
+                         "polynomials " + std::to_string(error) + ")");
+      }
+    }
+  }
+  return std::shared_ptr<const Rule>(new DataRule(std::move(spec)));
+}
+
+}  // namespace radquad

@@ -1,0 +1,55 @@
+// Rules given as data (points and weights) rather than code: what `File:PATH` rules and
+// `radquad rules --dump` exchange (experiments/rule_file.h has the file format).
+//
+// A data rule is deterministic. It is a product of a receiver and a source point set (kept
+// as a product, so the coupling code's fast path is used) or a list of 4D points. It is
+// checked when it is made: every coordinate in [0, 1], every value finite, weights summing to
+// 1, and, when a degree is declared, exactness for every polynomial of total degree up to it
+// (the tensor Legendre polynomials, as the registry's own rules are tested).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "quadrature/rule.h"
+
+namespace radquad {
+
+struct DataRuleSpec {
+  std::string name;
+  std::optional<int> degree;  // total degree integrated exactly; none: not claimed
+  std::string citation;
+  bool product = false;
+  PatchSamples receiver, source;  // product rules
+  LinkSamples points;             // other rules
+};
+
+class DataRule : public Rule {
+ public:
+  std::string name() const override { return spec_.name; }
+  std::size_t sampleCount() const override;
+  std::optional<int> degree() const override { return spec_.degree; }
+  std::string family() const override { return "data"; }
+  std::string citation() const override { return spec_.citation; }
+  RuleSamples samples(std::uint64_t seed) const override;
+
+ private:
+  friend std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where);
+  explicit DataRule(DataRuleSpec spec) : spec_(std::move(spec)) {}
+  DataRuleSpec spec_;
+};
+
+// Checks `spec` (above) and makes the rule; InputError naming `where` and the failed check
+// otherwise.
+std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where);
+
+// The largest error of `points` over the tensor Legendre polynomials
+// phi_a(s) phi_b(t) phi_c(u) phi_e(v) of total degree exactly `degree` (their integrals are 1
+// for the constant and 0 otherwise).
+double legendreExactnessError(const LinkSamples& points, int degree);
+
+// A rule's points as one 4D list (a product rule's pairs, receiver index outer).
+LinkSamples flattenedPoints(const RuleSamples& samples);
+
+}  // namespace radquad

@@ -1,0 +1,98 @@
+// Rules from data (quadrature/rules/data_rule.h, experiments/rule_file.h): every registered
+// rule written in the file format and read back integrates a link to the same coupling (bit
+// for bit for the deterministic ones: their points survive the round trip exactly); the checks at loading reject points
+// outside [0, 1], weights that do not sum to 1 and an overstated degree, naming the file; the
+// midpoint rule is accepted as exact to degree 1 and refused at degree 2 (its closed form).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "experiments/rule_file.h"
+#include "kernel/input_error.h"
+#include "quadrature/prepared_rule.h"
+#include "quadrature/registry.h"
+
+namespace radquad {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+Link testLink() {
+  static const Patch receiver = Patch::make(Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0), "r");
+  static const Patch source = Patch::make(Vec(0.2, 1.1, 1.3), Vec(0.9, 0, 0.1), Vec(0, -1.2, 0.2), "s");
+  return Link{receiver, source, nullptr};
+}
+
+TEST(RuleFile, EveryRegisteredRuleSurvivesTheRoundTrip) {
+  for (const auto& rule : namedRules()) {
+    const nlohmann::json written = ruleToJson(*rule, 7);
+    const auto read = parseRuleJson(nlohmann::json::parse(written.dump()), rule->name());
+    EXPECT_EQ(read->name(), rule->name());
+    EXPECT_EQ(read->sampleCount(), rule->sampleCount());
+    EXPECT_EQ(read->samples(0).isProduct, rule->samples(7).isProduct);
+    // A random rule's draw becomes a fixed rule: no degree.
+    EXPECT_EQ(read->degree(), rule->isRandom() ? std::nullopt : rule->degree());
+    for (int degree : {0, 2}) {
+      const LinkIntegral original = PreparedRule(rule, degree).integrate(testLink(), 7);
+      const LinkIntegral again = PreparedRule(read, degree).integrate(testLink(), 0);
+      // The same points and weights; random rules of equal weights integrate through their
+      // point stream, in another summation order than a list of points: equal to rounding.
+      EXPECT_LE((again.coupling - original.coupling).cwiseAbs().maxCoeff(),
+                1e-14 * original.coupling.cwiseAbs().maxCoeff())
+          << rule->name() << " degree " << degree;
+      if (!rule->isRandom()) {
+        EXPECT_EQ(again.coupling, original.coupling) << rule->name();
+      }
+    }
+  }
+}
+
+nlohmann::json midpoint(int degree) {
+  return {{"name", "Midpoint"}, {"degree", degree}, {"points", {{0.5, 0.5, 0.5, 0.5}}},
+          {"weights", {1.0}}};
+}
+
+TEST(RuleFile, TheMidpointRuleIsExactToDegreeOneAndNoMore) {
+  EXPECT_EQ(parseRuleJson(midpoint(1), "midpoint")->degree(), 1);
+  try {
+    parseRuleJson(midpoint(2), "midpoint.json");
+    FAIL() << "an overstated degree was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("midpoint.json: the rule is declared exact to degree 2"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(RuleFile, BadPointsAndWeightsAreRefusedNamingTheFile) {
+  const auto refused = [](nlohmann::json value, const char* fragment) {
+    try {
+      parseRuleJson(value, "bad.json");
+      ADD_FAILURE() << "accepted: " << value.dump();
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("bad.json"), std::string::npos) << message;
+      EXPECT_NE(message.find(fragment), std::string::npos) << message;
+    }
+  };
+  nlohmann::json outside = midpoint(0);
+  outside["points"] = {{0.5, 1.5, 0.5, 0.5}};
+  refused(outside, "is not in [0, 1]");
+  nlohmann::json heavy = midpoint(0);
+  heavy["weights"] = {0.9};
+  refused(heavy, "weights sum to");
+  nlohmann::json mismatched = midpoint(0);
+  mismatched["weights"] = {0.5, 0.5};
+  refused(mismatched, "1 points but 2 weights");
+  nlohmann::json both = midpoint(0);
+  both["receiver"] = {{"points", {{0.5, 0.5}}}, {"weights", {1.0}}};
+  refused(both, "either points and weights, or receiver and source");
+  refused({{"name", "P"}, {"receiver", {{"points", {{0.5, 0.5}}}, {"weights", {1.0}}}}},
+          "needs both receiver and source");
+  nlohmann::json short_point = midpoint(0);
+  short_point["points"] = {{0.5, 0.5, 0.5}};
+  refused(short_point, "expected 4 coordinates");
+}
+
+}  // namespace
+}  // namespace radquad
