@@ -68,15 +68,27 @@ RuleSamples DataRule::samples(std::uint64_t) const {
 }
 
 double legendreExactnessError(const LinkSamples& points, int degree) {
+  // phi_k at every point's four coordinates, k = 0..degree: 4 (degree + 1) values per point.
+  const std::size_t n = points.size(), orders = std::size_t(degree) + 1;
+  std::vector<double> values(4 * orders * n);
+  const std::vector<double>* axes[4] = {&points.s, &points.t, &points.u, &points.v};
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t axis = 0; axis < 4; ++axis) {
+      for (std::size_t order = 0; order < orders; ++order) {
+        values[(k * 4 + axis) * orders + order] = legendre(int(order), (*axes[axis])[k]);
+      }
+    }
+  }
   double worst = 0.0;
   for (int a = 0; a <= degree; ++a) {
     for (int b = 0; a + b <= degree; ++b) {
       for (int c = 0; a + b + c <= degree; ++c) {
         const int e = degree - a - b - c;
         double sum = 0.0;
-        for (std::size_t k = 0; k < points.size(); ++k) {
-          sum += points.weight[k] * legendre(a, points.s[k]) * legendre(b, points.t[k]) *
-                 legendre(c, points.u[k]) * legendre(e, points.v[k]);
+        for (std::size_t k = 0; k < n; ++k) {
+          const double* phi = &values[k * 4 * orders];
+          sum += points.weight[k] * phi[std::size_t(a)] * phi[orders + std::size_t(b)] *
+                 phi[2 * orders + std::size_t(c)] * phi[3 * orders + std::size_t(e)];
         }
         worst = std::max(worst, std::fabs(sum - (degree == 0 ? 1.0 : 0.0)));
       }
@@ -114,9 +126,9 @@ std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& w
     checkWeights(spec.points.weight, where, "");
   }
   if (spec.degree) {
-    if (*spec.degree < 0 || *spec.degree > 40) {
-      throw InputError(where + ": degree " + std::to_string(*spec.degree) +
-                       " is not in [0, 40] (or null)");
+    if (*spec.degree < 0 || *spec.degree > kMaxDataRuleDegree) {
+      throw InputError(where + ": degree " + std::to_string(*spec.degree) + " is not in [0, " +
+                       std::to_string(kMaxDataRuleDegree) + "] (or null)");
     }
     RuleSamples samples;
     samples.isProduct = spec.product;

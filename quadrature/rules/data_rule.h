@@ -16,6 +16,10 @@
 
 namespace radquad {
 
+// The highest degree a data rule may declare (its check walks every tensor Legendre
+// polynomial up to it: C(D + 4, 4) of them, 46,376 at 30).
+inline constexpr int kMaxDataRuleDegree = 30;
+
 struct DataRuleSpec {
   std::string name;
   std::optional<int> degree;  // total degree integrated exactly; none: not claimed
