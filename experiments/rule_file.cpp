@@ -68,7 +68,12 @@ std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std
     if (!value["degree"].is_number_integer()) {
       throw InputError(where + ": degree must be an integer or null");
     }
-    spec.degree = value["degree"].get<int>();
+    const long long degree = value["degree"].get<long long>();
+    if (degree < 0 || degree > kMaxDataRuleDegree) {
+      throw InputError(where + ": degree " + value["degree"].dump() + " is not in [0, " +
+                       std::to_string(kMaxDataRuleDegree) + "] (or null)");
+    }
+    spec.degree = int(degree);
   }
   if (value.contains("citation")) {
     if (!value["citation"].is_string()) throw InputError(where + ": citation must be a string");

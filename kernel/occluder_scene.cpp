@@ -3,6 +3,7 @@
 #include "kernel/input_error.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -11,24 +12,31 @@
 namespace radquad {
 namespace {
 
-// The last message Embree reported on this thread (its error callback runs on the thread
-// whose call failed), for checkEmbree.
-thread_local std::string lastEmbreeMessage;
+// The first message Embree reported on this thread since the last check (its error callback
+// runs on the thread whose call failed; rtcGetDeviceError likewise keeps the first code), so
+// that checkEmbree's code and message belong together.
+thread_local std::string firstEmbreeMessage;
 
 void reportEmbreeError(void*, RTCError code, const char* message) {
-  lastEmbreeMessage = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
-                      (message ? message : "");
+  const std::string text =
+      "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+  std::fprintf(stderr, "radquad: %s\n", text.c_str());
+  if (firstEmbreeMessage.empty()) firstEmbreeMessage = text;
+}
+
+[[noreturn]] void embreeFailed(const char* step) {
+  checkEmbree(step);
+  throw ComputationError(std::string(step) + ": Embree returned no result");
 }
 
 }  // namespace
 
 void checkEmbree(const char* step) {
   const RTCError code = rtcGetDeviceError(embreeDevice());
+  std::string message = std::move(firstEmbreeMessage);
+  firstEmbreeMessage.clear();
   if (code == RTC_ERROR_NONE) return;
-  std::string message = lastEmbreeMessage.empty()
-                            ? "Embree error " + std::to_string(static_cast<int>(code))
-                            : lastEmbreeMessage;
-  lastEmbreeMessage.clear();
+  if (message.empty()) message = "Embree error " + std::to_string(static_cast<int>(code));
   throw ComputationError(std::string(step) + ": " + message);
 }
 
@@ -68,12 +76,19 @@ void SegmentBatch::push(const Eigen::Vector3d& origin, const Eigen::Vector3d& di
 }
 
 OccluderScene::OccluderScene() {
+  checkEmbree("before an occluder scene");
   scene_ = rtcNewScene(embreeDevice());
-  checkEmbree("creating an occluder scene");
+  if (scene_ == nullptr) embreeFailed("creating an occluder scene");
   // Robust traversal: slats and meshes share edges, and a ray through a shared edge must
   // not slip between two triangles.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  try {
+    checkEmbree("setting up an occluder scene");
+  } catch (...) {
+    rtcReleaseScene(scene_);
+    throw;
+  }
 }
 
 OccluderScene::~OccluderScene() {
@@ -81,13 +96,14 @@ OccluderScene::~OccluderScene() {
 }
 
 RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch) {
+  checkEmbree("before a parallelogram geometry");  // no stale error is blamed on this one
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
-  checkEmbree("creating a parallelogram geometry");
+  if (geometry == nullptr) embreeFailed("creating a parallelogram geometry");
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
   if (vertices == nullptr) {
     rtcReleaseGeometry(geometry);
-    checkEmbree("allocating a parallelogram's vertices");
+    embreeFailed("allocating a parallelogram's vertices");
   }
   const std::array<Eigen::Vector3d, 4> corners = patch.corners();
   for (int c = 0; c < 4; ++c) {
@@ -97,11 +113,16 @@ RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch) {
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(unsigned), 1));
   if (indices == nullptr) {
     rtcReleaseGeometry(geometry);
-    checkEmbree("allocating a parallelogram's index");
+    embreeFailed("allocating a parallelogram's index");
   }
   for (unsigned c = 0; c < 4; ++c) indices[c] = c;
   rtcCommitGeometry(geometry);
-  checkEmbree("committing a parallelogram geometry");
+  try {
+    checkEmbree("committing a parallelogram geometry");
+  } catch (...) {
+    rtcReleaseGeometry(geometry);
+    throw;
+  }
   return geometry;
 }
 
@@ -130,13 +151,14 @@ unsigned OccluderScene::addTriangleMesh(
       }
     }
   }
+  checkEmbree("before a triangle mesh");
   RTCGeometry geometry = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_TRIANGLE);
-  checkEmbree("creating a triangle mesh");
+  if (geometry == nullptr) embreeFailed("creating a triangle mesh");
   auto* vertexBuffer = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
   if (vertexBuffer == nullptr) {
     rtcReleaseGeometry(geometry);
-    checkEmbree("allocating a triangle mesh's vertices");
+    embreeFailed("allocating a triangle mesh's vertices");
   }
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     for (int axis = 0; axis < 3; ++axis) vertexBuffer[3 * v + axis] = float(vertices[v][axis]);
@@ -146,7 +168,7 @@ unsigned OccluderScene::addTriangleMesh(
                               3 * sizeof(unsigned), triangles.size()));
   if (indexBuffer == nullptr) {
     rtcReleaseGeometry(geometry);
-    checkEmbree("allocating a triangle mesh's indices");
+    embreeFailed("allocating a triangle mesh's indices");
   }
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     for (int corner = 0; corner < 3; ++corner) indexBuffer[3 * t + corner] = triangles[t][corner];

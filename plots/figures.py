@@ -157,6 +157,8 @@ def breakdown_figure(table, plots, stem):
     else:
         groups = [("", table)]
         metric = "relative_error"
+    if "relative_error_vs_gold" in groups[0][1]["rules"][0]:
+        metric += "_vs_gold"  # tables scored against the gold are drawn against it
     names = [rule["name"] for rule in (groups[0][1]["rules"])]
     panels = []
     for prefix, part in groups:

@@ -113,6 +113,10 @@ std::array<int, 4> Solver::chooseRule(const SolverLink& link,
       rule = chooseGaussRulesNoVisibility(input);
     }
   }
+  // The receiver keeps the fixed rule's points (Figure 4 gives it d+1; at degree 0 the floor
+  // of 2 keeps the midpoint rule's bias away, as for the fixed rules).
+  rule[0] = std::max(rule[0], fixed);
+  rule[1] = std::max(rule[1], fixed);
   rule = {alongSide(r, true, rule[0]), alongSide(r, false, rule[1]), alongSide(s, true, rule[2]),
           alongSide(s, false, rule[3])};
   // The kernel check (kernel_curvature.h): Figure 4 bounds the error of a reduced rule from

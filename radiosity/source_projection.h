@@ -33,7 +33,7 @@
 //
 // Both hold for a product rule on the whole source element, partially occluded or not
 // (visibility is part of the kernel); not for the composite rules of touching elements,
-// whose source points lie in the pieces (those keep all F columns; truncate() zeroes the
+// whose source points lie in the pieces (those keep all F columns; dropOrders() zeroes the
 // dropped orders' columns there).
 #pragma once
 

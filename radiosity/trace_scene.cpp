@@ -64,15 +64,21 @@ TraceScene::TraceScene(const Scene& scene) {
   // must not slip between them.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  for (std::size_t k = 0; k < scene.patches.size(); ++k) {
-    const Patch& patch = scene.patches[k].patch;
-    RTCGeometry geometry = newParallelogramGeometry(device, patch);
-    rtcAttachGeometryByID(scene_, geometry, unsigned(k));
-    rtcReleaseGeometry(geometry);
-    checkEmbree("adding a patch to the traced scene");
+  try {
+    for (std::size_t k = 0; k < scene.patches.size(); ++k) {
+      const Patch& patch = scene.patches[k].patch;
+      RTCGeometry geometry = newParallelogramGeometry(device, patch);
+      rtcAttachGeometryByID(scene_, geometry, unsigned(k));
+      rtcReleaseGeometry(geometry);
+      checkEmbree("adding a patch to the traced scene");
+    }
+    rtcCommitScene(scene_);
+    checkEmbree("building the traced scene");
+  } catch (...) {
+    rtcReleaseScene(scene_);  // the destructor does not run when the constructor throws
+    scene_ = nullptr;
+    throw;
   }
-  rtcCommitScene(scene_);
-  checkEmbree("building the traced scene");
 }
 
 TraceScene::~TraceScene() {

@@ -1,5 +1,5 @@
 // Exact two-scale relations of the orthonormal tensor Legendre basis (docs/design.md,
-// "Mathematical conventions") between an element and its four quadtree children.
+// "Conventions") between an element and its four quadtree children.
 //
 // Child c = 2*cu + cv covers u in [cu/2, (cu+1)/2], v in [cv/2, (cv+1)/2] of its parent,
 // so A_child = A_parent / 4. A parent function restricted to a child is a polynomial of the

@@ -11,7 +11,7 @@ namespace {
 
 std::size_t ruleIndex(const nlohmann::json& table, const std::string& name) {
   const nlohmann::json& rules =
-      table.contains("rules") ? table["rules"] : table["classes"]["partial"]["rules"];
+      table.contains("rules") ? table.at("rules") : table.at("classes").at("partial").at("rules");
   for (std::size_t r = 0; r < rules.size(); ++r) {
     if (rules[r]["name"] == name) return r;
   }

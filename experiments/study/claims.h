@@ -14,6 +14,9 @@
 //    (different links: unpaired). The report states it in U_b; the same ratio in the
 //    scale-free relative Frobenius error is recorded beside it (`scale_free`), since U_b
 //    follows each link's size of K.
+// The per-link scores come from the tables' `per_link` (four significant digits), so a claim's
+// ratio can differ from the table's own `ratio_to_fullgauss` (computed at full precision) in
+// the fifth digit.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -60,9 +60,9 @@ PairedRatio pairedRatio(const std::vector<double>& numerator,
     const double z = (numerator[i] - out.ratio * denominator[i]) / meanB;
     squares += z * z;
   }
-  const double half = 1.96 * std::sqrt(squares / double(n - 1) / double(n));
-  out.low = out.ratio - half;
-  out.high = out.ratio + half;
+  const double relative = std::sqrt(squares / double(n - 1) / double(n)) / out.ratio;
+  out.low = out.ratio * std::exp(-1.96 * relative);
+  out.high = out.ratio * std::exp(1.96 * relative);
   return out;
 }
 
@@ -73,8 +73,8 @@ PairedRatio unpairedRatio(const std::vector<double>& numerator,
   out.ratio = a.mean / b.mean;
   const double relative =
       std::sqrt(a.sem * a.sem / (a.mean * a.mean) + b.sem * b.sem / (b.mean * b.mean));
-  out.low = out.ratio * (1.0 - 1.96 * relative);
-  out.high = out.ratio * (1.0 + 1.96 * relative);
+  out.low = out.ratio * std::exp(-1.96 * relative);
+  out.high = out.ratio * std::exp(1.96 * relative);
   return out;
 }
 

@@ -17,16 +17,18 @@ double relativeFrobeniusError(const Eigen::MatrixXd& estimate, const Eigen::Matr
 
 // The ratio of the means of paired samples, sum a_i / sum b_i, with a 95% confidence
 // interval by the delta method: the linearised ratio z_i = (a_i - ratio b_i) / mean(b) has
-// standard error sd(z) / sqrt(n), and the interval is ratio -+ 1.96 of it (normal
-// approximation; n >= 2, else the interval is the ratio itself).
+// standard error se = sd(z) / sqrt(n); the interval is taken on the log of the ratio,
+// ratio exp(-+1.96 se / ratio), so that it stays positive when the errors are heavy-tailed
+// (a normal interval on the ratio itself went below 0 on the scene suites). n >= 2, else the
+// interval is the ratio itself.
 struct PairedRatio {
   double ratio = 0.0, low = 0.0, high = 0.0;
 };
 PairedRatio pairedRatio(const std::vector<double>& numerator, const std::vector<double>& denominator);
 
 // The ratio of the means of two independent samples (different links), mean(a) / mean(b),
-// with a 95% interval by the delta method: relative standard error
-// sqrt(sem(a)^2 / mean(a)^2 + sem(b)^2 / mean(b)^2).
+// with a 95% interval by the delta method on its log: relative standard error
+// s = sqrt(sem(a)^2 / mean(a)^2 + sem(b)^2 / mean(b)^2), interval ratio exp(-+1.96 s).
 PairedRatio unpairedRatio(const std::vector<double>& numerator,
                           const std::vector<double>& denominator);
 

@@ -72,12 +72,17 @@ TEST(StudyMetrics, RelativeFrobeniusErrorIsTheNormOfTheDifferenceOverTheNorm) {
 }
 
 TEST(StudyMetrics, PairedRatioWithItsDeltaMethodInterval) {
-  // a = (1, 2, 3), b = (1, 1, 1): ratio 2, z = a - 2 b = (-1, 0, 1), sd 1, half-width
-  // 1.96 / sqrt(3).
+  // a = (1, 2, 3), b = (1, 1, 1): ratio 2, z = a - 2 b = (-1, 0, 1), sd 1, standard error
+  // 1 / sqrt(3), relative to the ratio 1 / (2 sqrt 3); the interval on the log:
+  // 2 exp(-+1.96 / (2 sqrt 3)).
   const PairedRatio ratio = pairedRatio({1, 2, 3}, {1, 1, 1});
   EXPECT_DOUBLE_EQ(ratio.ratio, 2.0);
-  EXPECT_NEAR(ratio.high - ratio.ratio, 1.96 / std::sqrt(3.0), 1e-14);
-  EXPECT_NEAR(ratio.ratio - ratio.low, 1.96 / std::sqrt(3.0), 1e-14);
+  EXPECT_NEAR(ratio.high, 2.0 * std::exp(1.96 / (2.0 * std::sqrt(3.0))), 1e-14);
+  EXPECT_NEAR(ratio.low, 2.0 * std::exp(-1.96 / (2.0 * std::sqrt(3.0))), 1e-14);
+  // Heavy tails: one huge pair keeps the interval positive.
+  const PairedRatio tail = pairedRatio({1, 1, 1, 1, 400}, {1, 1, 1, 1, 1});
+  EXPECT_GT(tail.low, 0.0);
+  EXPECT_LT(tail.low, tail.ratio);
   // Proportional pairs: the ratio is exact and the interval has no width.
   const PairedRatio exact = pairedRatio({2, 4, 6, 8}, {1, 2, 3, 4});
   EXPECT_DOUBLE_EQ(exact.ratio, 2.0);
