@@ -120,7 +120,11 @@ std::shared_ptr<const Rule> findAnyRule(std::string_view name) {
     if (path.empty()) throw InputError("rule 'File:': expected File:PATH");
     return loadRuleFile(std::filesystem::path(std::string(path)));
   }
-  return findRule(name);
+  try {
+    return findRule(name);
+  } catch (const InputError& error) {
+    throw InputError(std::string(error.what()) + ", File:PATH");
+  }
 }
 
 nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed) {

@@ -5,15 +5,22 @@
 // plots/figures.py. Quick runs go to results/quick/ and
 // plots/quick/ so they never overwrite the canonical tables. The report's claims, checked on the
 // scene-derived tables, go to results/claims.json (experiments/study/claims.h).
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/json_input.h"
 #include "experiments/study/claims.h"
 #include "experiments/study/study_output.h"
+#include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 
 namespace radquad {
@@ -26,6 +33,9 @@ struct FiguresOptions {
   std::string resultsDir;
   std::string plotsDir;
   std::string python = "/usr/bin/python3";
+  std::vector<std::string> rules;
+  std::string seedText;
+  int threads = 0;
 };
 
 void runFigures(const FiguresOptions& options) {
@@ -37,14 +47,53 @@ void runFigures(const FiguresOptions& options) {
   const std::filesystem::path plots = !options.plotsDir.empty()
                                           ? std::filesystem::path(options.plotsDir)
                                           : root / (options.quick ? "plots/quick" : "plots");
+  StudyOverrides overrides;
+  overrides.rules = options.rules;
+  if (!options.seedText.empty()) {
+    overrides.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
+  }
+  const char* figures[] = {"fig1", "fig2", "fig1-scene", "fig2-scene"};
+  // Every config is read, and every overriding rule looked up, before the first study runs.
+  for (const char* figure : figures) {
+    readStudyConfigWith(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
+                        overrides);
+  }
   createOutputDirectory(results);
   createOutputDirectory(plots);
-  const StudyOptions study{options.gold, !options.quiet};
-  for (const char* figure : {"fig1", "fig2", "fig1-scene", "fig2-scene"}) {
-    runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
-                   results / (std::string(figure) + ".json"), study);
+  for (const char* name : {"fig1.json", "fig2.json", "fig1-scene.json", "fig2-scene.json",
+                           "claims.json"}) {
+    checkOutputPath(results / name, "--results", {});
   }
-  // The report's claims on the scene-derived suites (experiments/study/claims.h).
+  std::optional<tbb::global_control> threadLimit;
+  if (options.threads > 0) {
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
+  }
+  StudyOptions study;
+  study.gold = options.gold;
+  study.progress = !options.quiet;
+  for (const char* figure : figures) {
+    runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
+                   results / (std::string(figure) + ".json"), study, {}, overrides);
+  }
+  // The report's claims on the scene-derived suites (experiments/study/claims.h), when the
+  // rules they compare were scored; otherwise an earlier claims.json would describe other
+  // tables, and is removed.
+  std::string missing;
+  for (const char* rule : kClaimRules) {
+    if (!options.rules.empty() &&
+        std::find(options.rules.begin(), options.rules.end(), rule) == options.rules.end()) {
+      missing += std::string(missing.empty() ? "" : ", ") + rule;
+    }
+  }
+  if (!missing.empty()) {
+    std::filesystem::remove(results / "claims.json");
+    if (!options.quiet) {
+      std::cerr << "radquad figures: the report's claims not checked (not scored: " << missing
+                << ")\n";
+    }
+    runPlotScript(options.python, "figures.py", results, plots, "figures", options.quiet);
+    return;
+  }
   const nlohmann::json claims = reportClaims(readJsonFile(results / "fig1-scene.json"),
                                              readJsonFile(results / "fig2-scene.json"), options.gold);
   writeFileAtomically(results / "claims.json", claims.dump(2) + "\n");
@@ -73,6 +122,15 @@ void addFiguresCommand(CLI::App& app) {
   command->add_option("--results", options->resultsDir, "Directory of the JSON tables");
   command->add_option("--plots", options->plotsDir, "Directory of the figures");
   command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();
+  command->add_option("--rules", options->rules,
+                      "Score these rules in every figure instead of the configs' (comma-separated "
+                      "names, File:PATH included)")
+      ->delimiter(',');
+  command->add_option("--seed", options->seedText,
+                      "Use this seed in every config instead of theirs (a decimal 0..2^64-1)");
+  command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
   command->callback([options] { runFigures(*options); });
 }
 

@@ -23,6 +23,9 @@
 
 namespace radquad {
 
+// The rules the claims compare; a table without one of them cannot be checked.
+inline constexpr const char* kClaimRules[] = {"Stratified", "FullGauss", "MonteCarlo", "NRook"};
+
 // `fig1` and `fig2` are study tables (schema radquad.study/1) with per-link scores;
 // `vsGold` scores against the gold (the tables must then hold gold scores).
 nlohmann::json reportClaims(const nlohmann::json& fig1, const nlohmann::json& fig2, bool vsGold);

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "experiments/atomic_file.h"
+#include "experiments/rule_file.h"
 #include "kernel/input_error.h"
 
 #ifndef RADQUAD_SOURCE_DIR
@@ -73,9 +74,21 @@ nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& opti
   return table;
 }
 
+StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
+                                const StudyOverrides& overrides) {
+  StudyConfig config = readStudyConfig(configPath);
+  if (!overrides.rules.empty()) {
+    for (const std::string& name : overrides.rules) findAnyRule(name);  // InputError if unknown
+    config.rules = overrides.rules;
+  }
+  if (overrides.seed) config.seed = *overrides.seed;
+  return config;
+}
+
 void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
-                    const StudyOptions& options, const std::filesystem::path& linksOutPath) {
-  const StudyConfig config = readStudyConfig(configPath);
+                    const StudyOptions& options, const std::filesystem::path& linksOutPath,
+                    const StudyOverrides& overrides) {
+  const StudyConfig config = readStudyConfigWith(configPath, overrides);
   StudyOptions runOptions = options;
   runOptions.keepDetails = !linksOutPath.empty();
   std::string linkLines;

@@ -2,9 +2,12 @@
 // `git_commit` and `elapsed_seconds`, written atomically.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "experiments/study/study_runner.h"
 
@@ -31,9 +34,21 @@ void runPlotScript(const std::string& python, const std::string& script,
 nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options,
                              std::string* linkLines = nullptr);
 
+// What the command line may change in a config before it runs: the rule list and the seed.
+struct StudyOverrides {
+  std::vector<std::string> rules;     // empty: the config's
+  std::optional<std::uint64_t> seed;  // none: the config's
+};
+
+// The config at `configPath` with `overrides` applied; the rules are looked up (InputError
+// naming an unknown one) before anything is computed.
+StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
+                                const StudyOverrides& overrides);
+
 // Runs the config at `configPath` and writes the table to `outPath` (atomically) and, when
 // `linksOutPath` is not empty, the per-link table there (atomically, after the table).
 void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
-                    const StudyOptions& options, const std::filesystem::path& linksOutPath = {});
+                    const StudyOptions& options, const std::filesystem::path& linksOutPath = {},
+                    const StudyOverrides& overrides = {});
 
 }  // namespace radquad

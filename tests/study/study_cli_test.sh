@@ -47,5 +47,32 @@ if [[ $status -ne 2 ]] || ! grep -q -- "--links-out" "$work/same.err"; then
 fi
 [[ -e "$work/same.out" ]] && { echo "FAIL links-out over --out: wrote a file"; failures=$((failures + 1)); }
 
+# Overrides: --rules and --seed replace the config's (and the table's options say so); the
+# table is the same for one thread and two; an unknown rule is refused before any work.
+for threads in 1 2; do
+  "$radquad" study "$work/good.json" --out "$work/over$threads.out" --rules FullGauss,Stratified \
+    --seed 77 --threads $threads --quiet || { echo "FAIL overrides: exit status $?"; failures=$((failures + 1)); }
+done
+/usr/bin/python3 - "$work/over1.out" "$work/over2.out" <<'PY' || failures=$((failures + 1))
+import json, sys
+one, two = (json.load(open(path)) for path in sys.argv[1:3])
+assert one["options"]["seed"] == 77 and one["options"]["rules"] == ["FullGauss", "Stratified"], one["options"]
+assert [rule["name"] for rule in one["classes"]["partial"]["rules"]] == ["FullGauss", "Stratified"]
+for table in (one, two):
+    table.pop("elapsed_seconds")
+assert one == two, "the table depends on the thread count"
+PY
+"$radquad" study "$work/good.json" --out "$work/nope.out" --rules FullGauss,Nope --quiet 2> "$work/nope.err"
+status=$?
+if [[ $status -ne 2 ]] || ! grep -q "unknown rule 'Nope'" "$work/nope.err"; then
+  echo "FAIL unknown override rule: exit status $status"; cat "$work/nope.err"; failures=$((failures + 1))
+fi
+[[ -e "$work/nope.out" ]] && { echo "FAIL unknown override rule: wrote a file"; failures=$((failures + 1)); }
+"$radquad" figures --quick --rules Nope --results "$work/figures" --plots "$work/plots" --quiet 2> "$work/figures.err"
+status=$?
+if [[ $status -ne 2 ]] || [[ -e "$work/figures" ]]; then
+  echo "FAIL figures with an unknown rule: exit status $status, or it made its folders"; failures=$((failures + 1))
+fi
+
 [[ $failures -eq 0 ]] && echo "study CLI: all checks passed"
 exit $((failures > 0))
