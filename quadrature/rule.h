@@ -26,6 +26,10 @@ struct RuleSamples {
   std::size_t size() const { return isProduct ? receiver.size() * source.size() : points.size(); }
 };
 
+// A draw's points as one 4D list: a product's every (receiver point, source point) pair with
+// the product of their weights, in the product path's pair order (receiver-major).
+LinkSamples flattenedPoints(const RuleSamples& samples);
+
 class Rule {
  public:
   virtual ~Rule() = default;

@@ -97,18 +97,6 @@ double legendreExactnessError(const LinkSamples& points, int degree) {
   return worst;
 }
 
-LinkSamples flattenedPoints(const RuleSamples& samples) {
-  if (!samples.isProduct) return samples.points;
-  LinkSamples out;
-  for (std::size_t r = 0; r < samples.receiver.size(); ++r) {
-    for (std::size_t q = 0; q < samples.source.size(); ++q) {
-      out.push(samples.receiver.u[r], samples.receiver.v[r], samples.source.u[q],
-               samples.source.v[q], samples.receiver.weight[r] * samples.source.weight[q]);
-    }
-  }
-  return out;
-}
-
 std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where) {
   if (spec.name.empty()) throw InputError(where + ": the rule has no name");
   if (spec.product) {

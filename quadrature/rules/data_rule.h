@@ -53,7 +53,4 @@ std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& w
 // for the constant and 0 otherwise).
 double legendreExactnessError(const LinkSamples& points, int degree);
 
-// A rule's points as one 4D list (a product rule's pairs, receiver index outer).
-LinkSamples flattenedPoints(const RuleSamples& samples);
-
 }  // namespace radquad

@@ -6,16 +6,15 @@
 // basis degree (each has its own compiled contraction).
 #include <gtest/gtest.h>
 
+#include "quadrature/rule.h"
 #include "kernel/coupling.h"
 #include "kernel/legendre_basis.h"
 #include "quadrature/registry.h"
 #include "tests/kernel/test_links.h"
-#include "tests/support/flatten_samples.h"
 
 namespace radquad {
 namespace {
 
-using testing::flattenSamples;
 
 TEST(CouplingPaths, ScatteredEqualsProductOnTheSamePoints) {
   OccluderScene scene;
@@ -30,7 +29,7 @@ TEST(CouplingPaths, ScatteredEqualsProductOnTheSamePoints) {
   for (const char* name :
        {"Gauss:5x3x4x7", "Gauss:4x4x1x1", "Gauss:4x4x2x1", "Gauss:3x3x1x3", "Gauss:2x2x1x1"}) {
     const RuleSamples samples = findRule(name)->samples(0);
-    const LinkSamples flat = flattenSamples(samples);
+    const LinkSamples flat = flattenedPoints(samples);
     for (const OccluderScene* occluders : {none, static_cast<const OccluderScene*>(&scene)}) {
       const Link link{receiver, source, occluders};
       for (int degree = 0; degree <= kMaxBasisDegree; ++degree) {

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
+#include "quadrature/rule.h"
 #include "kernel/coupling.h"
 #include "kernel/legendre_basis.h"
 #include "kernel/patch_intersection.h"
 #include "quadrature/registry.h"
-#include "tests/support/flatten_samples.h"
 
 namespace radquad {
 namespace {
@@ -97,7 +97,7 @@ TEST(CoincidentPoints, EveryPathStaysFiniteOnCrossingPatches) {
     const WeightedBasisTable sb = makeWeightedBasisTable(samples.source, degree);
     LinkIntegral product, scattered;
     accumulator.product(link, samples.receiver, rb, samples.source, sb, product);
-    accumulator.scattered(link, testing::flattenSamples(samples), degree, scattered);
+    accumulator.scattered(link, flattenedPoints(samples), degree, scattered);
     EXPECT_TRUE(product.coupling.allFinite()) << "degree " << degree;
     EXPECT_TRUE(scattered.coupling.allFinite()) << "degree " << degree;
     EXPECT_LE(product.raysCast, samples.receiver.size() * samples.source.size());

@@ -10,9 +10,9 @@
 #include <memory>
 #include <vector>
 
+#include "quadrature/rule.h"
 #include "quadrature/registry.h"
 #include "tests/quadrature/legendre_reference.h"
-#include "tests/support/flatten_samples.h"
 
 namespace radquad {
 namespace {
@@ -55,7 +55,7 @@ TEST_P(RuleExactness, ExactToExactlyTheDeclaredDegree) {
   const auto rule = findRule(GetParam());
   ASSERT_TRUE(rule->degree().has_value()) << rule->toString();
   const int declared = *rule->degree();
-  const LinkSamples points = testing::flattenSamples(rule->samples(0));
+  const LinkSamples points = flattenedPoints(rule->samples(0));
   ASSERT_EQ(points.size(), rule->sampleCount()) << rule->toString();
   double weightSum = 0.0;
   for (double w : points.weight) weightSum += w;
