@@ -16,7 +16,8 @@
 // Simpson's rule over the axis, h (g- + 4 g0 + g+) / 6, is exact to the cubic, and the
 // midpoint rule's relative error is estimated as their difference over the midpoint value:
 //   |g+ + g- - 2 g0| / (6 g0).
-// G is the unoccluded kernel with clamped cosines; where g0 = 0 and either g+- is not (the
+// G is the unoccluded kernel with clamped cosines (unoccludedKernel, kernel/coupling.h; the
+// estimate is a ratio, so its 1/pi does not matter); where g0 = 0 and either g+- is not (the
 // source's centre lies behind the receiver's plane or the other way round) the estimate is
 // 1: a one-point rule there sees nothing of a link that carries energy.
 #pragma once
@@ -24,11 +25,6 @@
 #include "kernel/patch.h"
 
 namespace radquad {
-
-// The unoccluded kernel times pi between a point x on `receiver` and y on `source`:
-// max(n_r.d, 0) max(-n_s.d, 0) / |d|^4, d = y - x (0 at d = 0).
-double clampedKernelTimesPi(const Patch& receiver, const Eigen::Vector3d& x, const Patch& source,
-                            const Eigen::Vector3d& y);
 
 // The estimated relative error of the one-point rule along the source's u axis (alongU) or
 // v axis, seen from the receiver's centre (above). Three kernel evaluations.

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "quadrature/gauss_legendre.h"
+#include "kernel/coupling.h"
 #include "radiosity/kernel_curvature.h"
 
 namespace radquad {
@@ -22,9 +23,9 @@ double trueMidpointError(const Patch& receiver, const Patch& source, bool alongU
   const Vec e = alongU ? source.edgeU : source.edgeV;
   double integral = 0.0;
   for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
-    integral += rule.weights[i] * clampedKernelTimesPi(receiver, x, source, c + (rule.nodes[i] - 0.5) * e);
+    integral += rule.weights[i] * unoccludedKernel(receiver, x, source, c + (rule.nodes[i] - 0.5) * e);
   }
-  const double midpoint = clampedKernelTimesPi(receiver, x, source, c);
+  const double midpoint = unoccludedKernel(receiver, x, source, c);
   return (integral - midpoint) / midpoint;
 }
 
