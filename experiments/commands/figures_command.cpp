@@ -17,10 +17,10 @@
 
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
+#include "experiments/commands/study_override_options.h"
 #include "experiments/json_input.h"
 #include "experiments/study/claims.h"
 #include "experiments/study/study_output.h"
-#include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 
 namespace radquad {
@@ -33,9 +33,7 @@ struct FiguresOptions {
   std::string resultsDir;
   std::string plotsDir;
   std::string python = "/usr/bin/python3";
-  std::vector<std::string> rules;
-  std::string seedText;
-  int threads = 0;
+  StudyOverrideOptions overrides;
 };
 
 void runFigures(const FiguresOptions& options) {
@@ -47,11 +45,7 @@ void runFigures(const FiguresOptions& options) {
   const std::filesystem::path plots = !options.plotsDir.empty()
                                           ? std::filesystem::path(options.plotsDir)
                                           : root / (options.quick ? "plots/quick" : "plots");
-  StudyOverrides overrides;
-  overrides.rules = options.rules;
-  if (!options.seedText.empty()) {
-    overrides.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
-  }
+  const StudyOverrides overrides = options.overrides.overrides();
   const char* figures[] = {"fig1", "fig2", "fig1-scene", "fig2-scene"};
   // Every config is read, and every overriding rule looked up, before the first study runs.
   for (const char* figure : figures) {
@@ -65,9 +59,7 @@ void runFigures(const FiguresOptions& options) {
     checkOutputPath(results / name, "--results", {});
   }
   std::optional<tbb::global_control> threadLimit;
-  if (options.threads > 0) {
-    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
-  }
+  options.overrides.limitThreads(threadLimit);
   StudyOptions study;
   study.gold = options.gold;
   study.progress = !options.quiet;
@@ -80,8 +72,8 @@ void runFigures(const FiguresOptions& options) {
   // tables, and is removed.
   std::string missing;
   for (const char* rule : kClaimRules) {
-    if (!options.rules.empty() &&
-        std::find(options.rules.begin(), options.rules.end(), rule) == options.rules.end()) {
+    if (!overrides.rules.empty() &&
+        std::find(overrides.rules.begin(), overrides.rules.end(), rule) == overrides.rules.end()) {
       missing += std::string(missing.empty() ? "" : ", ") + rule;
     }
   }
@@ -122,15 +114,7 @@ void addFiguresCommand(CLI::App& app) {
   command->add_option("--results", options->resultsDir, "Directory of the JSON tables");
   command->add_option("--plots", options->plotsDir, "Directory of the figures");
   command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();
-  command->add_option("--rules", options->rules,
-                      "Score these rules in every figure instead of the configs' (comma-separated "
-                      "names, File:PATH included)")
-      ->delimiter(',');
-  command->add_option("--seed", options->seedText,
-                      "Use this seed in every config instead of theirs (a decimal 0..2^64-1)");
-  command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
+  options->overrides.addTo(command, "every config's");
   command->callback([options] { runFigures(*options); });
 }
 

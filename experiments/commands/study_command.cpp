@@ -11,8 +11,8 @@
 
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
+#include "experiments/commands/study_override_options.h"
 #include "experiments/study/study_output.h"
-#include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 
 namespace radquad {
@@ -24,9 +24,7 @@ struct StudyCommandOptions {
   std::string linksOutPath;
   bool gold = false;
   bool quiet = false;
-  std::vector<std::string> rules;
-  std::string seedText;
-  int threads = 0;
+  StudyOverrideOptions overrides;
 };
 
 }  // namespace
@@ -45,21 +43,9 @@ void addStudyCommand(CLI::App& app) {
   command->add_flag("--gold", options->gold,
                     "Also score every rule and the reference against the gold reference");
   command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
-  command->add_option("--rules", options->rules,
-                      "Score these rules instead of the config's (comma-separated names, File:PATH "
-                      "included)")
-      ->delimiter(',');
-  command->add_option("--seed", options->seedText,
-                      "Use this seed instead of the config's (a decimal 0..2^64-1)");
-  command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
+  options->overrides.addTo(command, "the config's");
   command->callback([options] {
-    StudyOverrides overrides;
-    overrides.rules = options->rules;
-    if (!options->seedText.empty()) {
-      overrides.seed = parseDecimalOption(options->seedText, "--seed", 0, ~std::uint64_t(0));
-    }
+    const StudyOverrides overrides = options->overrides.overrides();
     checkOutputPath(options->outPath, "--out", {options->configPath});
     if (!options->linksOutPath.empty()) {
       checkOutputPath(options->linksOutPath, "--links-out", {options->configPath});
@@ -72,10 +58,7 @@ void addStudyCommand(CLI::App& app) {
     study.gold = options->gold;
     study.progress = !options->quiet;
     std::optional<tbb::global_control> threadLimit;
-    if (options->threads > 0) {
-      threadLimit.emplace(tbb::global_control::max_allowed_parallelism,
-                          std::size_t(options->threads));
-    }
+    options->overrides.limitThreads(threadLimit);
     runStudyToFile(options->configPath, options->outPath, study, options->linksOutPath, overrides);
   });
 }
