@@ -5,22 +5,10 @@
 #include <vector>
 
 #include "kernel/input_error.h"
+#include "kernel/legendre_basis.h"
 
 namespace radquad {
 namespace {
-
-// phi_k(x) = sqrt(2k+1) P_k(2x - 1), by the three-term recurrence.
-double legendre(int k, double x) {
-  const double t = 2.0 * x - 1.0;
-  double previous = 1.0, current = t;
-  if (k == 0) return 1.0;
-  for (int n = 1; n < k; ++n) {
-    const double next = ((2.0 * n + 1.0) * t * current - n * previous) / (n + 1.0);
-    previous = current;
-    current = next;
-  }
-  return std::sqrt(2.0 * k + 1.0) * current;
-}
 
 void checkCoordinates(const std::vector<double>& values, const std::string& where,
                       const char* what) {
@@ -74,9 +62,7 @@ double legendreExactnessError(const LinkSamples& points, int degree) {
   const std::vector<double>* axes[4] = {&points.s, &points.t, &points.u, &points.v};
   for (std::size_t k = 0; k < n; ++k) {
     for (std::size_t axis = 0; axis < 4; ++axis) {
-      for (std::size_t order = 0; order < orders; ++order) {
-        values[(k * 4 + axis) * orders + order] = legendre(int(order), (*axes[axis])[k]);
-      }
+      shiftedLegendreValues(degree, (*axes[axis])[k], &values[(k * 4 + axis) * orders]);
     }
   }
   double worst = 0.0;
