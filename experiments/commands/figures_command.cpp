@@ -18,7 +18,6 @@
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/commands/study_override_options.h"
-#include "experiments/json_input.h"
 #include "experiments/study/claims.h"
 #include "experiments/study/study_output.h"
 #include "kernel/input_error.h"
@@ -48,9 +47,11 @@ void runFigures(const FiguresOptions& options) {
   const StudyOverrides overrides = options.overrides.overrides();
   const char* figures[] = {"fig1", "fig2", "fig1-scene", "fig2-scene"};
   // Every config is read, and every overriding rule looked up, before the first study runs.
+  std::vector<std::filesystem::path> configPaths;
+  std::vector<StudyConfig> configs;
   for (const char* figure : figures) {
-    readStudyConfigWith(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
-                        overrides);
+    configPaths.push_back(root / "experiments/configs" / (std::string(figure) + suffix + ".json"));
+    configs.push_back(readStudyConfigWith(configPaths.back(), overrides));
   }
   createOutputDirectory(results);
   createOutputDirectory(plots);
@@ -63,9 +64,10 @@ void runFigures(const FiguresOptions& options) {
   StudyOptions study;
   study.gold = options.gold;
   study.progress = !options.quiet;
-  for (const char* figure : figures) {
-    runStudyToFile(root / "experiments/configs" / (std::string(figure) + suffix + ".json"),
-                   results / (std::string(figure) + ".json"), study, {}, overrides);
+  std::vector<nlohmann::json> tables;
+  for (std::size_t k = 0; k < configs.size(); ++k) {
+    tables.push_back(runStudyToFile(configs[k], configPaths[k],
+                                    results / (std::string(figures[k]) + ".json"), study));
   }
   // The report's claims on the scene-derived suites (experiments/study/claims.h), when the
   // rules they compare were scored; otherwise an earlier claims.json would describe other
@@ -83,18 +85,17 @@ void runFigures(const FiguresOptions& options) {
       std::cerr << "radquad figures: the report's claims not checked (not scored: " << missing
                 << ")\n";
     }
-    runPlotScript(options.python, "figures.py", results, plots, "figures", options.quiet);
-    return;
-  }
-  const nlohmann::json claims = reportClaims(readJsonFile(results / "fig1-scene.json"),
-                                             readJsonFile(results / "fig2-scene.json"), options.gold);
-  writeFileAtomically(results / "claims.json", claims.dump(2) + "\n");
-  if (!options.quiet) {
-    std::cerr << "radquad figures: the report's claims on the scene-derived suites: "
-              << "fig1_stratified_best " << claims["fig1_stratified_best"]["verdict"].get<std::string>()
-              << ", fig2_gauss_best " << claims["fig2_gauss_best"]["verdict"].get<std::string>()
-              << ", fig2_partial_more_error "
-              << claims["fig2_partial_more_error"]["verdict"].get<std::string>() << "\n";
+  } else {
+    const nlohmann::json claims = reportClaims(tables[2], tables[3], options.gold);  // -scene
+    writeFileAtomically(results / "claims.json", claims.dump(2) + "\n");
+    if (!options.quiet) {
+      std::cerr << "radquad figures: the report's claims on the scene-derived suites: "
+                << "fig1_stratified_best "
+                << claims["fig1_stratified_best"]["verdict"].get<std::string>()
+                << ", fig2_gauss_best " << claims["fig2_gauss_best"]["verdict"].get<std::string>()
+                << ", fig2_partial_more_error "
+                << claims["fig2_partial_more_error"]["verdict"].get<std::string>() << "\n";
+    }
   }
   runPlotScript(options.python, "figures.py", results, plots, "figures", options.quiet);
 }

@@ -59,7 +59,8 @@ void addStudyCommand(CLI::App& app) {
     study.progress = !options->quiet;
     std::optional<tbb::global_control> threadLimit;
     options->overrides.limitThreads(threadLimit);
-    runStudyToFile(options->configPath, options->outPath, study, options->linksOutPath, overrides);
+    runStudyToFile(readStudyConfigWith(options->configPath, overrides), options->configPath,
+                   options->outPath, study, options->linksOutPath);
   });
 }
 

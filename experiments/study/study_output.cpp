@@ -85,10 +85,9 @@ StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
   return config;
 }
 
-void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
-                    const StudyOptions& options, const std::filesystem::path& linksOutPath,
-                    const StudyOverrides& overrides) {
-  const StudyConfig config = readStudyConfigWith(configPath, overrides);
+nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::path& configPath,
+                              const std::filesystem::path& outPath, const StudyOptions& options,
+                              const std::filesystem::path& linksOutPath) {
   StudyOptions runOptions = options;
   runOptions.keepDetails = !linksOutPath.empty();
   std::string linkLines;
@@ -106,6 +105,7 @@ void runStudyToFile(const std::filesystem::path& configPath, const std::filesyst
     std::cerr << "radquad study: wrote " << outPath.string() << " in "
               << table["elapsed_seconds"].get<double>() << " s\n";
   }
+  return table;
 }
 
 }  // namespace radquad

@@ -45,10 +45,11 @@ struct StudyOverrides {
 StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
                                 const StudyOverrides& overrides);
 
-// Runs the config at `configPath` and writes the table to `outPath` (atomically) and, when
-// `linksOutPath` is not empty, the per-link table there (atomically, after the table).
-void runStudyToFile(const std::filesystem::path& configPath, const std::filesystem::path& outPath,
-                    const StudyOptions& options, const std::filesystem::path& linksOutPath = {},
-                    const StudyOverrides& overrides = {});
+// Runs `config` (read from `configPath`, which the table records) and writes the table to
+// `outPath` (atomically) and, when `linksOutPath` is not empty, the per-link table there
+// (atomically, after the table). Returns the table as written.
+nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::path& configPath,
+                              const std::filesystem::path& outPath, const StudyOptions& options,
+                              const std::filesystem::path& linksOutPath = {});
 
 }  // namespace radquad
