@@ -8,7 +8,10 @@
 // Each iteration integrates the same 6 links of one kind (the first 6 candidates whose
 // visible fraction, by a 6^4 Gauss rule, lies in (0.05, 0.95)); the time per link is the
 // iteration time / 6. Counters: receiver_points (exact), max_relative_error (the largest
-// reported error over the largest |K| entry; for dense stratified its standard error).
+// reported error over the largest |K| entry; for dense stratified its standard error),
+// by_critical_lines (the share of links whose outer integral took the critical lines; the
+// rest took Genz-Malik, ExactGoldOptions::maxFloorPoints). The `_genz_malik` variants force
+// Genz-Malik on every link, for comparison.
 // The soup's exact gold is capped at 20,000 receiver points (it does not converge there).
 // unionClipper / unionBoostGeometry: the shadows' union by Clipper (the one used) and by
 // Boost.Geometry, on the same overlapping quadrilaterals (counter `area` checks they agree).
@@ -68,23 +71,28 @@ KindLinks partialLinks(OccluderKind kind) {
   return out;
 }
 
-void exactPerLink(benchmark::State& state, OccluderKind kind, int degree, double tolerance) {
+void exactPerLink(benchmark::State& state, OccluderKind kind, int degree, double tolerance,
+                  ExactOuterMethod outer) {
   const KindLinks links = partialLinks(kind);
   ExactGoldOptions options;
   options.tolerance = tolerance;
+  options.outer = outer;
   if (kind == OccluderKind::soup) options.maxEvaluations = 20000;
-  double points = 0.0, worst = 0.0;
+  double points = 0.0, worst = 0.0, lines = 0.0;
   for (auto _ : state) {
     points = 0.0;
     worst = 0.0;
+    lines = 0.0;
     for (const Link& link : links.links) {
       const ExactGold gold = exactGold(link, degree, options);
       points += double(gold.receiverPoints);
+      lines += gold.outer == ExactOuterMethod::criticalLines ? 1.0 : 0.0;
       worst = std::max(worst, gold.couplingError.maxCoeff() / gold.coupling.cwiseAbs().maxCoeff());
       benchmark::DoNotOptimize(gold.coupling.data());
     }
   }
   state.counters["receiver_points"] = points / double(links.links.size());
+  state.counters["by_critical_lines"] = lines / double(links.links.size());
   state.counters["max_relative_error"] = worst;
   state.counters["links"] = double(links.links.size());
 }
@@ -108,20 +116,35 @@ void densePerLink(benchmark::State& state, OccluderKind kind, int degree) {
   state.counters["links"] = double(links.links.size());
 }
 
-#define GOLD_BENCHMARKS(kind, name)                                                          \
-  BENCHMARK_CAPTURE(densePerLink, name##_d0, kind, 0)->Unit(benchmark::kMillisecond);        \
-  BENCHMARK_CAPTURE(exactPerLink, name##_d0_1e7, kind, 0, 1e-7)                              \
-      ->Unit(benchmark::kMillisecond);                                                       \
-  BENCHMARK_CAPTURE(densePerLink, name##_d2, kind, 2)->Unit(benchmark::kMillisecond);        \
-  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e5, kind, 2, 1e-5)                              \
-      ->Unit(benchmark::kMillisecond);                                                       \
-  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e7, kind, 2, 1e-7)->Unit(benchmark::kMillisecond)
+constexpr ExactOuterMethod kLines = ExactOuterMethod::criticalLines;
+constexpr ExactOuterMethod kGenzMalik = ExactOuterMethod::genzMalik;
+
+// The study configs' tolerances (1e-6 at degree 0, 1e-5 at degree 2) and the default 1e-7.
+#define GOLD_BENCHMARKS(kind, name)                                                           \
+  BENCHMARK_CAPTURE(densePerLink, name##_d0, kind, 0)->Unit(benchmark::kMillisecond);         \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d0_1e6, kind, 0, 1e-6, kLines)                       \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d0_1e6_genz_malik, kind, 0, 1e-6, kGenzMalik)        \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d0_1e7, kind, 0, 1e-7, kLines)                       \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d0_1e7_genz_malik, kind, 0, 1e-7, kGenzMalik)        \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(densePerLink, name##_d2, kind, 2)->Unit(benchmark::kMillisecond);         \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e5, kind, 2, 1e-5, kLines)                       \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e5_genz_malik, kind, 2, 1e-5, kGenzMalik)        \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e7, kind, 2, 1e-7, kLines)                       \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, name##_d2_1e7_genz_malik, kind, 2, 1e-7, kGenzMalik)        \
+      ->Unit(benchmark::kMillisecond)
 
 GOLD_BENCHMARKS(OccluderKind::oneBlocker, one_blocker);
 GOLD_BENCHMARKS(OccluderKind::severalBlockers, several_blockers);
 GOLD_BENCHMARKS(OccluderKind::slats, slats);
 BENCHMARK_CAPTURE(densePerLink, soup_d0, OccluderKind::soup, 0)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(exactPerLink, soup_d0_1e7_capped, OccluderKind::soup, 0, 1e-7)
+BENCHMARK_CAPTURE(exactPerLink, soup_d0_1e7_capped, OccluderKind::soup, 0, 1e-7, kLines)
     ->Unit(benchmark::kMillisecond);
 
 // The polygon union the exact gold forms where shadows overlap, by the two libraries it could

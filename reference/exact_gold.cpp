@@ -5,12 +5,16 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "kernel/input_error.h"
 #include "kernel/legendre_basis.h"
+#include "quadrature/gauss_legendre.h"
+#include "reference/critical_segments.h"
 #include "reference/exact_visibility.h"
+#include "reference/gauss_kronrod.h"
 #include "reference/source_moments.h"
 
 namespace radquad {
@@ -23,6 +27,7 @@ struct Worker {
   VisibleRings rings;
   std::vector<double> inner;
   std::vector<double> receiverValues;
+  std::vector<double> samples;  // scratch of the critical-line cubature
   bool finite = true;
 
   Worker(const Link& link, int degree)
@@ -83,7 +88,285 @@ int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* 
   return integrand->finite() ? 0 : 1;
 }
 
+
+// The points of one piece of a 1D adaptive integration, of a vector of functions.
+struct Piece {
+  double a = 0.0, b = 0.0;
+  std::vector<double> value, error;  // Kronrod estimate; |Kronrod - Gauss| (+ inner errors)
+  double worst = 0.0;                // the largest entry of error
+};
+
+double largestAbs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// Folds the 15 samples of a piece (samples[j * values + v], point j of kronrodPoint) into
+// its value and error: the Kronrod sum, and its distance from the embedded Gauss sum (the
+// Gauss rule's error, a bound on the Kronrod rule's, which is far smaller on analytic pieces).
+void foldPiece(const GaussKronrodPair& pair, const double* samples, std::size_t values,
+               Piece& piece) {
+  piece.value.assign(values, 0.0);
+  std::vector<double> gauss(values, 0.0);
+  const double half = 0.5 * (piece.b - piece.a);
+  for (int j = 0; j < pair.points(); ++j) {
+    const double kronrod = half * pair.kronrodWeight(j);
+    const double gaussWeight = half * pair.gaussWeight(j);
+    for (std::size_t v = 0; v < values; ++v) {
+      piece.value[v] += kronrod * samples[std::size_t(j) * values + v];
+      gauss[v] += gaussWeight * samples[std::size_t(j) * values + v];
+    }
+  }
+  piece.error.resize(values);
+  for (std::size_t v = 0; v < values; ++v) piece.error[v] = std::abs(piece.value[v] - gauss[v]);
+  piece.worst = largestAbs(piece.error);
+}
+
+double kronrodAbscissa(const GaussKronrodPair& pair, const Piece& piece, int j) {
+  return 0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * pair.node(j);
+}
+
+// The pieces between sorted breakpoints in [0, 1] (gaps under 1e-12 merged).
+std::vector<Piece> piecesBetween(std::vector<double> breaks) {
+  std::sort(breaks.begin(), breaks.end());
+  std::vector<Piece> pieces;
+  double start = 0.0;
+  for (double b : breaks) {
+    b = std::min(std::max(b, 0.0), 1.0);
+    if (b - start > 1e-12) {
+      pieces.push_back(Piece{start, b, {}, {}, 0.0});
+      start = b;
+    }
+  }
+  if (pieces.empty()) pieces.push_back(Piece{0.0, 1.0, {}, {}, 0.0});
+  pieces.back().b = 1.0;
+  return pieces;
+}
+
+// The t of every segment crossing the line s = const (segments along t excluded: they are
+// breakpoints of the outer integral).
+std::vector<double> crossingsAt(const std::vector<ReceiverSegment>& segments, double s) {
+  std::vector<double> breaks = {0.0, 1.0};
+  for (const auto& segment : segments) {
+    const double s0 = segment.a.x(), s1 = segment.b.x();
+    if (std::abs(s1 - s0) < 1e-14) continue;
+    const double f = (s - s0) / (s1 - s0);
+    if (f < 0.0 || f > 1.0) continue;
+    breaks.push_back(segment.a.y() + f * (segment.b.y() - segment.a.y()));
+  }
+  return breaks;
+}
+
+// One round of the global adaptive strategy: the pieces carrying at least a quarter of the
+// largest piece error are halved (several at once, so that an outer round's lines run in
+// parallel). Returns false when no piece can be halved.
+template <class Evaluate>
+bool halveWorst(std::vector<Piece>& pieces, Evaluate&& evaluate) {
+  double largest = 0.0;
+  for (const Piece& piece : pieces) largest = std::max(largest, piece.worst);
+  std::vector<Piece> next, halves;
+  std::vector<std::size_t> at;
+  for (const Piece& piece : pieces) {
+    if (piece.worst > 0.0 && piece.worst >= 0.25 * largest && piece.b - piece.a > 1e-12) {
+      const double middle = 0.5 * (piece.a + piece.b);
+      at.push_back(next.size());
+      next.push_back(Piece{piece.a, middle, {}, {}, 0.0});
+      next.push_back(Piece{middle, piece.b, {}, {}, 0.0});
+    } else {
+      next.push_back(piece);
+    }
+  }
+  if (at.empty()) return false;
+  evaluate(next, at);
+  pieces = std::move(next);
+  return true;
+}
+
+void sumPieces(const std::vector<Piece>& pieces, std::size_t values, std::vector<double>& value,
+               std::vector<double>& error) {
+  value.assign(values, 0.0);
+  error.assign(values, 0.0);
+  for (const Piece& piece : pieces) {
+    for (std::size_t v = 0; v < values; ++v) {
+      value[v] += piece.value[v];
+      error[v] += piece.error[v];
+    }
+  }
+}
+
+// The outer integral as iterated adaptive Gauss-Kronrod (7, 15) with the critical segments
+// (critical_segments.h) as breakpoints: g(s) = int_0^1 f(s, t) dt along each line s = const,
+// the breakpoints where the line crosses a segment; the outer integral of g over s, the
+// breakpoints at the segments' ends and at segments along t. Between them the integrands are
+// analytic (but for the three-edge events), and Gauss-Kronrod converges exponentially.
+class CriticalLineCubature {
+ public:
+  CriticalLineCubature(OuterIntegrand& integrand, std::vector<ReceiverSegment> segments,
+                       const ExactGoldOptions& options)
+      : integrand_(integrand),
+        pair_(options.kronrodPoints == 15 ||
+                      (options.kronrodPoints == 0 && options.tolerance < 1e-6)
+                  ? GaussKronrodPair::fifteenPoint()
+                  : GaussKronrodPair::sevenPoint()),
+        segments_(std::move(segments)),
+        options_(options),
+        values_(std::size_t(integrand.functions * integrand.functions)) {
+    std::vector<double> breaks = {0.0, 1.0};
+    for (const auto& segment : segments_) {
+      breaks.push_back(segment.a.x());
+      breaks.push_back(segment.b.x());
+    }
+    initial_ = piecesBetween(std::move(breaks));
+  }
+
+  // Receiver points the initial breakpoints alone take (no bisection): the cost floor.
+  std::uint64_t floorPoints() const {
+    std::uint64_t points = 0;
+    for (const Piece& piece : initial_) {
+      const std::size_t pieces = piecesBetween(crossingsAt(segments_, 0.5 * (piece.a + piece.b))).size();
+      points += std::uint64_t(pair_.points()) * std::uint64_t(pair_.points()) * pieces;
+    }
+    return points;
+  }
+
+  // value, error: row-major (a * n + b). Returns whether the tolerance was met.
+  bool run(std::vector<double>& value, std::vector<double>& error) {
+    // The inner lines take an absolute tolerance, a share of tolerance * max |K|: K's size
+    // comes first from a 16 x 16 Gauss product over the receiver. A poor estimate costs
+    // points, not correctness: the summed errors (inner ones included) decide convergence.
+    std::vector<Piece> pieces = initial_;
+    double scale = estimateScale();
+    std::vector<std::size_t> all(pieces.size());
+    for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+    evaluateOuter(pieces, all, options_.innerShare * options_.tolerance * scale);
+    for (;;) {
+      sumPieces(pieces, values_, value, error);
+      scale = largestAbs(value);
+      const double target = options_.tolerance * scale;
+      if (largestAbs(error) <= target) return true;
+      if (points_ >= options_.maxEvaluations) return false;
+      const double innerTolerance = options_.innerShare * target;
+      if (!halveWorst(pieces, [&](std::vector<Piece>& next, const std::vector<std::size_t>& at) {
+            std::vector<std::size_t> fresh;
+            for (std::size_t k : at) {
+              fresh.push_back(k);
+              fresh.push_back(k + 1);
+            }
+            evaluateOuter(next, fresh, innerTolerance);
+          })) {
+        return false;
+      }
+    }
+  }
+
+  std::uint64_t points() const { return points_; }
+
+ private:
+  double estimateScale() {
+    const GaussLegendreRule& rule = gaussLegendreUnit(16);
+    const std::size_t n = rule.nodes.size();
+    std::vector<std::vector<double>> rows(n, std::vector<double>(values_, 0.0));
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+      Worker& worker = integrand_.workers.local();
+      std::vector<double> sample(values_);
+      for (std::size_t j = 0; j < n; ++j) {
+        integrand_.evaluate(worker, rule.nodes[i], rule.nodes[j], sample.data());
+        for (std::size_t v = 0; v < values_; ++v) {
+          rows[i][v] += rule.weights[i] * rule.weights[j] * sample[v];
+        }
+      }
+    });
+    points_ += n * n;
+    std::vector<double> total(values_, 0.0);
+    for (const auto& row : rows) {
+      for (std::size_t v = 0; v < values_; ++v) total[v] += row[v];
+    }
+    return largestAbs(total);
+  }
+
+  // The 15 lines of every piece listed in `fresh`, computed in parallel, each to the absolute
+  // `innerTolerance`. A line's result depends on its s only, whatever the thread.
+  void evaluateOuter(std::vector<Piece>& pieces, const std::vector<std::size_t>& fresh,
+                     double innerTolerance) {
+    const std::size_t m = std::size_t(pair_.points());
+    const std::size_t lines = fresh.size() * m;
+    std::vector<Piece> lineResult(lines);
+    std::vector<std::uint64_t> linePoints(lines, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        Worker& worker = integrand_.workers.local();
+                        for (std::size_t l = range.begin(); l < range.end(); ++l) {
+                          const Piece& piece = pieces[fresh[l / m]];
+                          const double s = kronrodAbscissa(pair_, piece, int(l % m));
+                          linePoints[l] = integrateLine(worker, s, innerTolerance, lineResult[l]);
+                        }
+                      });
+    for (std::uint64_t n : linePoints) points_ += n;
+    std::vector<double> samples(values_ * m);
+    for (std::size_t f = 0; f < fresh.size(); ++f) {
+      Piece& piece = pieces[fresh[f]];
+      for (int j = 0; j < pair_.points(); ++j) {
+        const Piece& line = lineResult[f * m + std::size_t(j)];
+        std::copy(line.value.begin(), line.value.end(), samples.begin() + std::ptrdiff_t(j) * std::ptrdiff_t(values_));
+      }
+      foldPiece(pair_, samples.data(), values_, piece);
+      // The inner errors, integrated with the Kronrod weights, add to the piece's.
+      const double half = 0.5 * (piece.b - piece.a);
+      for (int j = 0; j < pair_.points(); ++j) {
+        const Piece& line = lineResult[f * m + std::size_t(j)];
+        for (std::size_t v = 0; v < values_; ++v) {
+          piece.error[v] += half * pair_.kronrodWeight(j) * line.error[v];
+        }
+      }
+      piece.worst = largestAbs(piece.error);
+    }
+  }
+
+  // g(s) and its error into `line` (value, error); returns the points taken.
+  std::uint64_t integrateLine(Worker& worker, double s, double tolerance, Piece& line) const {
+    std::vector<Piece> pieces = piecesBetween(crossingsAt(segments_, s));
+    std::uint64_t points = 0;
+    for (Piece& piece : pieces) points += evaluateInner(worker, s, piece);
+    for (;;) {
+      sumPieces(pieces, values_, line.value, line.error);
+      if (largestAbs(line.error) <= tolerance || points >= options_.maxLinePoints) return points;
+      if (!halveWorst(pieces, [&](std::vector<Piece>& next, const std::vector<std::size_t>& at) {
+            for (std::size_t k : at) {
+              points += evaluateInner(worker, s, next[k]);
+              points += evaluateInner(worker, s, next[k + 1]);
+            }
+          })) {
+        return points;
+      }
+    }
+  }
+
+  std::uint64_t evaluateInner(Worker& worker, double s, Piece& piece) const {
+    std::vector<double>& samples = worker.samples;
+    samples.resize(values_ * std::size_t(pair_.points()));
+    for (int j = 0; j < pair_.points(); ++j) {
+      integrand_.evaluate(worker, s, kronrodAbscissa(pair_, piece, j),
+                          samples.data() + std::size_t(j) * values_);
+    }
+    foldPiece(pair_, samples.data(), values_, piece);
+    return std::uint64_t(pair_.points());
+  }
+
+  OuterIntegrand& integrand_;
+  const GaussKronrodPair& pair_;
+  std::vector<ReceiverSegment> segments_;
+  ExactGoldOptions options_;
+  std::size_t values_;
+  std::vector<Piece> initial_;
+  std::uint64_t points_ = 0;
+};
+
 }  // namespace
+
+const char* exactOuterMethodName(ExactOuterMethod method) {
+  return method == ExactOuterMethod::criticalLines ? "critical lines" : "genz-malik";
+}
 
 ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& options) {
   validateBasisDegree(degree);
@@ -91,15 +374,41 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   OuterIntegrand integrand(link, degree);
   const unsigned values = unsigned(integrand.functions * integrand.functions);
   std::vector<double> value(values), error(values);
-  const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
-  const int status =
-      hcubature_v(values, integrandCallback, &integrand, 2, low, high, options.maxEvaluations, 0.0,
-                  options.tolerance, ERROR_LINF, value.data(), error.data());
-  if (!integrand.finite()) {
-    throw ComputationError("exact gold: the inner integral was not finite");
-  }
-  if (status != 0) throw ComputationError("exact gold: the cubature failed");
   ExactGold gold;
+  auto genzMalik = [&] {
+    const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
+    const int status =
+        hcubature_v(values, integrandCallback, &integrand, 2, low, high, options.maxEvaluations,
+                    0.0, options.tolerance, ERROR_LINF, value.data(), error.data());
+    if (!integrand.finite()) {
+      throw ComputationError("exact gold: the inner integral was not finite");
+    }
+    if (status != 0) throw ComputationError("exact gold: the cubature failed");
+  };
+  bool lines = options.outer == ExactOuterMethod::criticalLines;
+  if (lines) {
+    std::vector<ReceiverSegment> segments =
+        criticalSegments(link.receiver, link.source, ExactVisibility(link).candidates());
+    gold.criticalSegments = segments.size();
+    CriticalLineCubature cubature(integrand, std::move(segments), options);
+    // Many segments make the breakpoints' product costly (floor ~ segments^2): then the
+    // bisection of Genz-Malik, linear in the segments' length, is cheaper.
+    // Genz-Malik's points grow as tolerance^(-1/2), the floor not at all: the threshold
+    // scales so.
+    const double threshold =
+        double(degree == 0 ? options.maxFloorPoints : options.maxFloorPointsHigherDegrees) *
+        std::sqrt(1e-7 / options.tolerance);
+    lines = double(cubature.floorPoints()) <= threshold;
+    if (lines) {
+      cubature.run(value, error);
+      integrand.points = cubature.points();
+      if (!integrand.finite()) {
+        throw ComputationError("exact gold: the inner integral was not finite");
+      }
+    }
+  }
+  if (!lines) genzMalik();
+  gold.outer = lines ? ExactOuterMethod::criticalLines : ExactOuterMethod::genzMalik;
   const int n = integrand.functions;
   gold.coupling.resize(n, n);
   gold.couplingError.resize(n, n);

@@ -4,15 +4,25 @@
 //   K[a][b] = sqrt(A_r / A_s) int_{[0,1]^2} phi_a(s, t) I_b(x(s, t)) ds dt,
 //
 // the inner integral I_b (source_moments.h) over the exactly visible part of the source
-// (exact_visibility.h), the outer one by globally adaptive cubature over the receiver's unit
-// square: the degree-7 Genz-Malik rule with its embedded degree-5 rule as the error estimate
-// (hcubature from libcubature), bisecting the region of largest error until the estimated
-// error of every coefficient is at most `tolerance` times K's largest entry, or the
-// evaluation budget is spent (then converged = false). The integrand is analytic between the
-// curves where the visible polygon changes shape (shadow edges and vertices crossing the
-// source's edges, or each other); the bisection concentrates on those curves. No random
-// numbers: the same link gives the same bits, whatever the number of threads (the points of
-// a batch are spread over threads; each value depends on its point only).
+// (exact_visibility.h). I_b is analytic in x except on the critical segments of the receiver
+// (critical_segments.h: where a shadow vertex crosses an edge, a source vertex enters a
+// shadow, or x crosses the source's plane) and on the curves of three-edge events. The outer
+// integral over the receiver's unit square is taken by one of two methods:
+//   - critical lines (default): iterated adaptive Gauss-Kronrod (7, 15) (gauss_kronrod.h),
+//     along t on lines s = const with breakpoints where the line crosses a segment, and over
+//     s with breakpoints at the segments' ends; each line's integral to a share (innerShare)
+//     of the tolerance, the outer pieces halved where the Kronrod-Gauss differences (plus the
+//     lines' own errors) are largest. Between breakpoints the integrands are analytic, so the
+//     rules converge exponentially and the breakpoints alone usually suffice. The breakpoints'
+//     grid costs 15 x 15 points per cell (about the square of the segments' count): when
+//     that floor exceeds maxFloorPoints, the link takes
+//   - Genz-Malik: the degree-7 rule with its embedded degree-5 rule as the error estimate
+//     (hcubature from libcubature), bisecting the region of largest error; blind to the
+//     segments, it resolves them algebraically.
+// Both stop when the estimated error of every coefficient is at most `tolerance` times K's
+// largest entry, or when the evaluation budget is spent (then converged = false). No random
+// numbers: the same link gives the same bits, whatever the number of threads (lines, or the
+// points of a batch, are spread over threads; each value depends on its point only).
 #pragma once
 
 #include <Eigen/Core>
@@ -23,9 +33,30 @@
 
 namespace radquad {
 
+// The outer (receiver) integral: Gauss-Kronrod along lines with the critical segments as
+// breakpoints (critical_segments.h; the default), or Genz-Malik cubature over the square,
+// blind to where the integrand has kinks.
+enum class ExactOuterMethod { criticalLines, genzMalik };
+
 struct ExactGoldOptions {
   double tolerance = 1e-7;             // estimated error / max |K| entry
   std::size_t maxEvaluations = 4000000;  // receiver points, each an exact inner integral
+  ExactOuterMethod outer = ExactOuterMethod::criticalLines;
+  // Critical lines: the share of the tolerance left to the inner (t) integrals, and the
+  // receiver points one line may take.
+  double innerShare = 0.1;
+  // The Gauss-Kronrod pair of the critical lines: 7 (the (3, 7) pair), 15 (the (7, 15) pair),
+  // or 0: 15 below a tolerance of 1e-6, 7 from there on.
+  int kronrodPoints = 0;
+  std::size_t maxLinePoints = 20000;
+  // Critical lines only when the breakpoints alone take at most this many receiver points
+  // (the pair's points squared per cell of the breakpoints' grid) at tolerance 1e-7, scaled
+  // by (1e-7 / tolerance)^(1/2) (Genz-Malik's points grow so, the floor does not); Genz-Malik
+  // otherwise. Measured on the study's links (bench/gold_bench.cpp): at degree 0 and 1e-7,
+  // Genz-Malik needs about as many points as the floor from 30,000 on; at degree >= 1 it
+  // needs 2 to 4 times more than at degree 0, the critical lines the same.
+  std::uint64_t maxFloorPoints = 30000;
+  std::uint64_t maxFloorPointsHigherDegrees = 120000;
 };
 
 struct ExactGold {
@@ -37,7 +68,12 @@ struct ExactGold {
   std::uint64_t receiverPoints = 0;   // outer evaluations
   std::uint64_t polygonUnions = 0;    // receiver points whose shadows overlapped
   std::size_t candidateOccluders = 0;  // occluder polygons in the link's shaft
+  std::size_t criticalSegments = 0;    // critical lines: segments on the receiver
+  ExactOuterMethod outer = ExactOuterMethod::criticalLines;  // the method used
 };
+
+// "critical lines" or "genz-malik".
+const char* exactOuterMethodName(ExactOuterMethod method);
 
 ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& options = {});
 

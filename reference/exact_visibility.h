@@ -74,6 +74,8 @@ class ExactVisibility {
 
   const ExactVisibilityStatistics& statistics() const { return statistics_; }
   std::size_t candidateCount() const { return candidates_.size(); }
+  // The occluder polygons in the link's shaft (the only ones that can block it).
+  const std::vector<std::vector<Eigen::Vector3d>>& candidates() const { return candidates_; }
 
  private:
   const Link& link_;

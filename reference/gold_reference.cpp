@@ -126,6 +126,8 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
     gold.converged = exact.converged;
     gold.receiverPoints = exact.receiverPoints;
     gold.shaftOccluders = exact.candidateOccluders;
+    gold.outerMethod = exactOuterMethodName(exact.outer);
+    gold.criticalSegments = exact.criticalSegments;
     return gold;
   }
   if (unoccluded) {

@@ -8,7 +8,7 @@
 // it is estimated), `kernel_evaluations`, `visible_fraction`; with --gold, `gold` =
 // {method, form_factor, coupling, error = {kind, form_factor, coupling}, converged,
 // kernel_evaluations, and gauss_points, tolerance, lambert_check (Gauss) or tolerance,
-// receiver_points, shaft_occluders (exact visibility)} and `reference_minus_gold` = {form_factor,
+// receiver_points, shaft_occluders, outer_method, critical_segments (exact visibility)} and `reference_minus_gold` = {form_factor,
 // max_abs_coupling, form_factor_in_standard_errors}.
 #include <iostream>
 #include <memory>
@@ -60,6 +60,8 @@ nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options)
     out["tolerance"] = options.exactTolerance;
     out["receiver_points"] = gold.receiverPoints;
     out["shaft_occluders"] = gold.shaftOccluders;
+    out["outer_method"] = gold.outerMethod;
+    out["critical_segments"] = gold.criticalSegments;
   }
   if (gold.lambert) {
     const LambertCheck& check = *gold.lambert;
