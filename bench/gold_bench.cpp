@@ -3,7 +3,7 @@
 // (reference/exact_gold.h) beside the dense stratified gold of the study configs (16^4
 // strata, 8 replicates = 524,288 samples), at degree 0 and 2, per occluder kind.
 //
-//   build/release/bench/gold_bench --benchmark_min_time=0.2   (one thread; about 3 minutes)
+//   build/release/bench/gold_bench --benchmark_min_time=0.05   (one thread; about 10 minutes)
 //
 // Each iteration integrates the same 6 links of one kind (the first 6 candidates whose
 // visible fraction, by a 6^4 Gauss rule, lies in (0.05, 0.95)); the time per link is the

@@ -161,6 +161,10 @@ closed = 2 / (math.pi * x * y) * (
     - x * math.atan(x) - y * math.atan(y))
 assert gold["converged"], gold
 assert abs(gold["form_factor"] - closed / 2) < 1e-7 * closed, (gold["form_factor"], closed / 2)
+# The blocker's edge seen from the source's corners gives two critical segments, along the
+# receiver's edges s = 0 and s = 1; one analytic cell: the critical lines are taken.
+assert gold["outer_method"] == "critical lines", gold["outer_method"]
+assert gold["critical_segments"] >= 2, gold["critical_segments"]
 PY
 check triangle_half_blocked $?
 expect_error bad_triangle "occluders[0].triangle: expected an array of 3 points" link "$fixtures/bad_triangle.json" --rule FullGauss
