@@ -147,6 +147,8 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
     record.goldMaxRelativeError = gold.couplingError.maxCoeff() / G.cwiseAbs().maxCoeff();
     record.goldConverged = gold.converged;
+    for (const double b : l1ErrorBound(gold.couplingError, area)) record.goldL1BoundTotal += b;
+    record.goldFrobeniusError = gold.couplingError.norm() / G.norm();
     record.referenceRelativeErrorVsGold = relativeError(K, G);
     record.referenceFrobeniusErrorVsGold = relativeFrobeniusError(K, G);
     record.referenceL1BoundVsGold = l1ErrorBound(K - G, area);

@@ -65,6 +65,10 @@ struct LinkRecord {
   // tolerance.
   double goldMaxRelativeError = 0.0;
   bool goldConverged = true;
+  // The gold's own error in the two other metrics: its error estimates put through the L1
+  // bound (summed over source functions), and their Frobenius norm over the gold's.
+  double goldL1BoundTotal = 0.0;
+  double goldFrobeniusError = 0.0;
   std::vector<double> referenceL1BoundVsGold;
   std::shared_ptr<const LinkDetail> detail;  // with StudyOptions::keepDetails
 };

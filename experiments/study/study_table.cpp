@@ -243,6 +243,37 @@ nlohmann::json ratioToFullGauss(const std::vector<LinkRecord>& links, std::size_
   return {{"ratio", ratio.ratio}, {"low95", ratio.low}, {"high95", ratio.high}};
 }
 
+// The gold's own mean error over the rule's mean error against the gold, per metric of the
+// figure: a bar is measured, not noise, when this share is small (below kGoldNoiseLimit).
+constexpr double kGoldNoiseLimit = 0.01;
+
+double meanOf(const std::vector<LinkRecord>& links, double (*pick)(const LinkRecord&, std::size_t),
+              std::size_t r) {
+  double total = 0.0;
+  for (const LinkRecord& link : links) total += pick(link, r);
+  return total / double(links.size());
+}
+
+nlohmann::json goldNoiseShare(const std::vector<LinkRecord>& links, std::size_t r, bool fig2) {
+  const auto share = [&](double (*own)(const LinkRecord&, std::size_t),
+                         double (*rule)(const LinkRecord&, std::size_t)) {
+    const double ruleMean = meanOf(links, rule, r);
+    return ruleMean > 0.0 ? meanOf(links, own, r) / ruleMean : 0.0;
+  };
+  nlohmann::json out = {
+      {"relative_error", share([](const LinkRecord& l, std::size_t) { return std::abs(l.goldRelativeError); },
+                               [](const LinkRecord& l, std::size_t k) { return l.relativeErrorVsGold[k]; })}};
+  if (fig2) {
+    out["l1_error_bound_total"] =
+        share([](const LinkRecord& l, std::size_t) { return l.goldL1BoundTotal; },
+              [](const LinkRecord& l, std::size_t k) { return sum(l.l1BoundVsGold[k]); });
+    out["relative_frobenius_error"] =
+        share([](const LinkRecord& l, std::size_t) { return l.goldFrobeniusError; },
+              [](const LinkRecord& l, std::size_t k) { return l.frobeniusErrorVsGold[k]; });
+  }
+  return out;
+}
+
 nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& classRun, bool gold,
                          bool fig2) {
   const RuleInfo& rule = run.rules[r];
@@ -298,6 +329,7 @@ nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& cla
       }
     }
   }
+  if (gold && !links.empty()) entry["gold_noise_share"] = goldNoiseShare(links, r, fig2);
   if (!ratios.empty()) entry["ratio_to_fullgauss"] = ratios;
   return entry;
 }
@@ -398,6 +430,32 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
       classes[studyClassName(classRun.linkClass)] = classTable(run, classRun, options.gold, true);
     }
     table["classes"] = classes;
+  }
+  if (options.gold) {
+    // The worst share of the gold's own error in a rule's mean error, over classes, rules and
+    // metrics: the check that no bar of the figure is the gold's noise.
+    nlohmann::json worst = {{"share", 0.0}};
+    const auto scan = [&](const std::string& className, const nlohmann::json& rules) {
+      for (const nlohmann::json& rule : rules) {
+        if (!rule.contains("gold_noise_share")) continue;
+        for (const auto& [metric, value] : rule["gold_noise_share"].items()) {
+          if (value.get<double>() > worst["share"].get<double>()) {
+            worst = {{"share", value}, {"class", className}, {"rule", rule["name"]},
+                     {"metric", metric}};
+          }
+        }
+      }
+    };
+    if (!fig2) {
+      scan("partial", table["rules"]);
+    } else {
+      for (const auto& [className, classTableJson] : table["classes"].items()) {
+        scan(className, classTableJson["rules"]);
+      }
+    }
+    table["gold"]["noise_check"] = {{"limit", kGoldNoiseLimit},
+                                    {"holds", worst["share"].get<double>() <= kGoldNoiseLimit},
+                                    {"worst", worst}};
   }
   return table;
 }

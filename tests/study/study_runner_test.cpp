@@ -5,6 +5,7 @@
 
 #include "experiments/scenarios/random_stream.h"
 #include "experiments/study/reference_estimate.h"
+#include "experiments/study/study_metrics.h"
 #include "experiments/study/study_runner.h"
 #include "reference/stratified_reference.h"
 #include "experiments/json_input.h"
@@ -146,6 +147,55 @@ TEST(StudyRunner, ReferenceStandardErrorAgreesWithTheReferenceLibrary) {
         << mine.standardError << "\nvs\n"
         << theirs.couplingStandardError;
   }
+}
+
+// The gold-noise check: per class, rule and metric, the gold's own mean error (recomputed here
+// from each link's gold error matrix) over the rule's mean error against the gold; the gold
+// is better than every rule, and the check holds when the worst share is at most 1%.
+TEST(StudyRunner, TheGoldNoiseShareIsTheGoldsOwnErrorOverTheRulesMeanError) {
+  StudyConfig config = tinyConfig(2, 3);
+  config.gold.exactTolerance = 1e-6;
+  StudyOptions options;
+  options.gold = true;
+  options.keepDetails = true;
+  const StudyRun run = runStudy(config, options);
+  const nlohmann::json table = studyTable(config, options, run);
+  double worst = 0.0;
+  for (const ClassRun& classRun : run.classes) {
+    const nlohmann::json& rules = table["classes"][studyClassName(classRun.linkClass)]["rules"];
+    const double n = double(classRun.links.size());
+    double ownRelative = 0.0, ownBound = 0.0, ownFrobenius = 0.0;
+    for (const LinkRecord& link : classRun.links) {
+      const Eigen::MatrixXd& G = link.detail->gold;
+      const Eigen::MatrixXd& E = link.detail->goldError;
+      ownRelative += E(0, 0) / G(0, 0) / n;
+      ownFrobenius += std::sqrt(E.cwiseAbs2().sum() / G.cwiseAbs2().sum()) / n;
+      for (const double b : l1ErrorBound(E, link.detail->receiver.area)) ownBound += b / n;
+    }
+    for (std::size_t r = 0; r < run.rules.size(); ++r) {
+      double ruleRelative = 0.0, ruleBound = 0.0, ruleFrobenius = 0.0;
+      for (const LinkRecord& link : classRun.links) {
+        ruleRelative += link.relativeErrorVsGold[r] / n;
+        ruleFrobenius += link.frobeniusErrorVsGold[r] / n;
+        for (const double b : link.l1BoundVsGold[r]) ruleBound += b / n;
+      }
+      const nlohmann::json& share = rules[r]["gold_noise_share"];
+      EXPECT_NEAR(share["relative_error"].get<double>(), ownRelative / ruleRelative,
+                  1e-9 * ownRelative / ruleRelative);
+      EXPECT_NEAR(share["l1_error_bound_total"].get<double>(), ownBound / ruleBound,
+                  1e-9 * ownBound / ruleBound);
+      EXPECT_NEAR(share["relative_frobenius_error"].get<double>(), ownFrobenius / ruleFrobenius,
+                  1e-9 * ownFrobenius / ruleFrobenius);
+      for (const double value : {ownRelative / ruleRelative, ownBound / ruleBound,
+                                 ownFrobenius / ruleFrobenius}) {
+        EXPECT_LT(value, 1.0) << run.rules[r].name;
+        worst = std::max(worst, value);
+      }
+    }
+  }
+  const nlohmann::json& check = table["gold"]["noise_check"];
+  EXPECT_NEAR(check["worst"]["share"].get<double>(), worst, 1e-9 * worst);
+  EXPECT_EQ(check["holds"].get<bool>(), worst <= 0.01);
 }
 
 StudyConfig sceneConfig(int unoccluded, int partial) {
