@@ -131,6 +131,7 @@ bool Solver::refinementPass() {
   }
   bool refined = false;
   while (!pending.empty()) {
+    if (memoryExceeded("refinement")) break;
     // Which links split, and which of their elements (a function of each link alone, so the
     // choices are made in parallel and applied in order).
     std::vector<int> choices(pending.size());

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <numbers>
@@ -414,18 +415,35 @@ std::string Solver::divergence() const {
   return {};
 }
 
+bool Solver::memoryExceeded(const char* phase) {
+  if (!budgetExceeded_.empty()) return true;
+  const std::size_t resident = residentBytes();
+  if (resident <= options_.maxMemoryBytes) return false;
+  constexpr double kMiB = 1024.0 * 1024.0;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the memory budget (%.0f MiB) was reached during %s: %.0f MiB resident with "
+                "%zu elements and %zu links; raise --max-memory, or refine less (a larger "
+                "--bf-eps or --min-area)",
+                double(options_.maxMemoryBytes) / kMiB, phase, double(resident) / kMiB,
+                hierarchy_->size(), links_.size());
+  budgetExceeded_ = text;
+  return true;
+}
+
 void Solver::solve() {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   createInitialLinks();
+  memoryExceeded("the initial linking");
   // Hanrahan, Salzman and Aupperle's scheme: refine, iterate until the radiosity settles,
   // refine again with the settled radiosity; done when a refinement pass splits nothing.
   double change = std::numeric_limits<double>::infinity();
   for (int iteration = 1; iteration <= options_.maxIterations; ++iteration) {
     const bool recheck = iteration == 1 || change < options_.tolerance;
-    const bool refined = recheck && refinementPass();
+    const bool refined = budgetExceeded_.empty() && recheck && refinementPass();
     if (!budgetExceeded_.empty()) {
       statistics_.failure = budgetExceeded_;
       break;
@@ -436,6 +454,10 @@ void Solver::solve() {
     }
     rebuildElementLinks();
     computeCouplings();
+    if (memoryExceeded("the coupling integration")) {
+      statistics_.failure = budgetExceeded_;
+      break;
+    }
     gather();
     change = pushPull();
     statistics_.iterations = iteration;

@@ -16,6 +16,7 @@
 
 #include "quadrature/adaptive_gauss.h"
 #include "radiosity/hierarchy.h"
+#include "radiosity/memory_budget.h"
 #include "radiosity/scene.h"
 #include "radiosity/source_projection.h"
 #include "radiosity/visibility.h"
@@ -73,6 +74,10 @@ struct SolverOptions {
   // per link before couplings; the couplings' own store comes on top).
   std::size_t maxElements = 10000000;
   std::size_t maxLinks = 100000000;
+  // The process's resident memory (radiosity/memory_budget.h), checked after the initial
+  // links, after every wave of refinement and after every integration pass; the solve fails
+  // with a message naming the budget when it is exceeded.
+  std::size_t maxMemoryBytes = defaultMemoryBudget();
   // Links between touching elements (a shared edge or corner: the kernel is singular there)
   // are integrated by splitting both elements into quadrants, recursively to this depth,
   // where sub-elements still touch; the link's rule is applied to every piece.
@@ -184,7 +189,9 @@ class Solver {
   // The element of a link to split: 0 receiver, 1 source (solver.cpp).
   int splitSide(const SolverLink& link) const;
   bool refinementPass();
-  std::string budgetExceeded_;  // set by refinementPass when a budget stops it
+  // Sets budgetExceeded_ when the resident memory exceeds the budget; returns whether it did.
+  bool memoryExceeded(const char* phase);
+  std::string budgetExceeded_;  // set when a budget stops the solve
   void classifyLinks(std::vector<int>& created);
   bool oracleSaysRefine(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.

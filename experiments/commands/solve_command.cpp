@@ -43,6 +43,7 @@ struct SolveCommandOptions {
   int maxIterations = SolverOptions{}.maxIterations;
   std::size_t maxElements = SolverOptions{}.maxElements;
   std::size_t maxLinks = SolverOptions{}.maxLinks;
+  std::size_t maxMemoryMiB = SolverOptions{}.maxMemoryBytes >> 20;
   int singularDepth = SolverOptions{}.singularDepth;
   int threads = 0;
   bool quiet = false;
@@ -112,6 +113,7 @@ void runSolve(const SolveCommandOptions& command) {
   options.maxIterations = command.maxIterations;
   options.maxElements = command.maxElements;
   options.maxLinks = command.maxLinks;
+  options.maxMemoryBytes = command.maxMemoryMiB << 20;
   options.singularDepth = command.singularDepth;
   if (!command.quiet) {
     options.progress = [](const SolveProgress& progress) {
@@ -156,6 +158,7 @@ void runSolve(const SolveCommandOptions& command) {
         {"max_iterations", options.maxIterations},
         {"max_elements", options.maxElements},
         {"max_links", options.maxLinks},
+        {"max_memory_mib", options.maxMemoryBytes >> 20},
         {"singular_depth", options.singularDepth},
         {"iteration", "jacobi"}}},
       {"kernel_evaluations", statistics.kernelEvaluations},
@@ -297,6 +300,12 @@ void addSolveCommand(CLI::App& app) {
       ->add_option("--max-links", options->maxLinks,
                    "Link budget: the solve fails (exit 3) when refinement would exceed it")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
+      ->capture_default_str();
+  command
+      ->add_option("--max-memory", options->maxMemoryMiB,
+                   "Memory budget in MiB (default: 3/4 of the machine's memory): the solve fails "
+                   "(exit 3) when the process's resident memory exceeds it")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))
       ->capture_default_str();
   command
       ->add_option("--singular-depth", options->singularDepth,
