@@ -14,7 +14,20 @@
 namespace radquad {
 
 void Solver::createInitialLinks() {
+  const auto start = std::chrono::steady_clock::now();
+  double reported = 0.0;
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   const int patches = int(scene_.patches.size());
+  const auto report = [&](std::size_t patchesDone, std::size_t classified) {
+    if (!options_.linkingProgress) return;
+    const double now = elapsed();
+    if (now < 1.0 || now - reported < 1.0) return;
+    reported = now;
+    options_.linkingProgress(
+        LinkingProgress{patchesDone, std::size_t(patches), links_.size(), classified, now});
+  };
   for (int r = 0; r < patches; ++r) {
     for (int s = 0; s < patches; ++s) {
       if (r == s) continue;
@@ -25,10 +38,27 @@ void Solver::createInitialLinks() {
       link.visibility = LinkClass::kPartial;  // to be classified against every patch
       links_.push_back(std::move(link));
     }
+    // Quadratic in the patches: the budgets are checked, and progress reported, per row.
+    if (links_.size() > options_.maxLinks) {
+      budgetExceeded_ = "the link budget (" + std::to_string(options_.maxLinks) +
+                        " links) was reached during the initial linking (patch " +
+                        std::to_string(r + 1) + " of " + std::to_string(patches) +
+                        "); raise --max-links, or merge patches";
+      return;
+    }
+    if ((r % 64 == 63 || r + 1 == patches) && memoryExceeded("the initial linking")) return;
+    report(std::size_t(r + 1), 0);
   }
-  std::vector<int> created(links_.size());
-  for (std::size_t k = 0; k < created.size(); ++k) created[k] = int(k);
-  classifyLinks(created);
+  // Classification casts rays for every link: in chunks, with progress between them.
+  constexpr std::size_t kChunk = std::size_t(1) << 16;
+  std::vector<int> created;
+  for (std::size_t begin = 0; begin < links_.size(); begin += kChunk) {
+    const std::size_t end = std::min(links_.size(), begin + kChunk);
+    created.resize(end - begin);
+    for (std::size_t k = begin; k < end; ++k) created[k - begin] = int(k);
+    classifyLinks(created);
+    report(std::size_t(patches), end);
+  }
 }
 
 // Classifies the links in `created` whose parent was partial (or that are top-level):

@@ -437,7 +437,6 @@ void Solver::solve() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   createInitialLinks();
-  memoryExceeded("the initial linking");
   // Hanrahan, Salzman and Aupperle's scheme: refine, iterate until the radiosity settles,
   // refine again with the settled radiosity; done when a refinement pass splits nothing.
   double change = std::numeric_limits<double>::infinity();

@@ -86,6 +86,16 @@ struct SolverOptions {
   std::uint64_t seed = 0;
   // Called after every iteration (for progress reports); may be empty.
   std::function<void(const struct SolveProgress&)> progress;
+  // Called during the initial linking (quadratic in the patches), at most about once a
+  // second once it has run a second: patches linked so far of all, links so far; may be empty.
+  std::function<void(const struct LinkingProgress&)> linkingProgress;
+};
+
+struct LinkingProgress {
+  std::size_t patchesDone = 0, patches = 0;
+  std::size_t links = 0;
+  std::size_t classified = 0;  // links whose visibility is classified so far
+  double elapsedSeconds = 0.0;
 };
 
 struct SolveProgress {

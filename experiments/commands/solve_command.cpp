@@ -116,6 +116,13 @@ void runSolve(const SolveCommandOptions& command) {
   options.maxMemoryBytes = command.maxMemoryMiB << 20;
   options.singularDepth = command.singularDepth;
   if (!command.quiet) {
+    options.linkingProgress = [](const LinkingProgress& progress) {
+      std::fprintf(stderr,
+                   "radquad solve: initial linking: %zu of %zu patches, %zu links, %zu "
+                   "classified, %.1f s\n",
+                   progress.patchesDone, progress.patches, progress.links, progress.classified,
+                   progress.elapsedSeconds);
+    };
     options.progress = [](const SolveProgress& progress) {
       if (progress.elapsedSeconds < 1.0) return;
       std::fprintf(stderr,

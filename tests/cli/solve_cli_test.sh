@@ -68,6 +68,7 @@ expect_status 3 "iteration cap" "no convergence within 2 iterations" solve corne
 expect_status 3 "element budget" "element budget (200 elements) was reached" solve cornell --max-elements 200
 expect_status 3 "link budget" "link budget (500 links) was reached" solve cornell --max-links 500
 expect_status 2 "zero element budget" "--max-elements" solve cornell --max-elements 0
+expect_status 3 "initial link budget" "link budget (100 links) was reached during the initial linking (patch 9 of 17)" solve cornell --max-links 100
 # The memory budget: any process holds more than 1 MiB once the scene is linked.
 expect_status 3 "memory budget" "memory budget (1 MiB) was reached during the initial linking" solve cornell --max-memory 1
 expect_status 2 "zero memory budget" "--max-memory" solve cornell --max-memory 0
