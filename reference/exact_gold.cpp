@@ -6,7 +6,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <functional>
+#include <thread>
 #include <vector>
 
 #include "kernel/input_error.h"
@@ -44,6 +48,19 @@ struct OuterIntegrand {
   double scale;  // sqrt(A_r / A_s)
   tbb::enumerable_thread_specific<Worker> workers;
   std::uint64_t points = 0;
+  // Progress (ExactGoldOptions::progress), from the calling thread.
+  std::function<void(std::uint64_t, double)> progress;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double reported = 0.0;
+
+  void report(std::uint64_t pointsSoFar) {
+    if (!progress) return;
+    const double now =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (now < 1.0 || now - reported < 1.0) return;
+    reported = now;
+    progress(pointsSoFar, now);
+  }
 
   OuterIntegrand(const Link& l, int d)
       : link(l),
@@ -77,6 +94,7 @@ int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* 
                       unsigned values, double* out) {
   auto* integrand = static_cast<OuterIntegrand*>(data);
   integrand->points += count;
+  integrand->report(integrand->points);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 8),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       Worker& worker = integrand->workers.local();
@@ -247,6 +265,7 @@ class CriticalLineCubature {
       if (largestAbs(error) <= target) return true;
       if (points_ >= options_.maxEvaluations) return false;
       const double innerTolerance = options_.innerShare * target;
+      integrand_.report(points_);
       if (!halveWorst(pieces, [&](std::vector<Piece>& next, const std::vector<std::size_t>& at) {
             std::vector<std::size_t> fresh;
             for (std::size_t k : at) {
@@ -293,6 +312,9 @@ class CriticalLineCubature {
     const std::size_t lines = fresh.size() * m;
     std::vector<Piece> lineResult(lines);
     std::vector<std::uint64_t> linePoints(lines, 0);
+    // Progress is reported from the calling thread only, which takes part in the loop.
+    const std::thread::id caller = std::this_thread::get_id();
+    std::atomic<std::uint64_t> done{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines, 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         Worker& worker = integrand_.workers.local();
@@ -300,6 +322,8 @@ class CriticalLineCubature {
                           const Piece& piece = pieces[fresh[l / m]];
                           const double s = kronrodAbscissa(pair_, piece, int(l % m));
                           linePoints[l] = integrateLine(worker, s, innerTolerance, lineResult[l]);
+                          done += linePoints[l];
+                          if (std::this_thread::get_id() == caller) integrand_.report(points_ + done);
                         }
                       });
     for (std::uint64_t n : linePoints) points_ += n;
@@ -372,6 +396,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   validateBasisDegree(degree);
   if (!(options.tolerance > 0.0)) throw InputError("exact gold: tolerance must be positive");
   OuterIntegrand integrand(link, degree);
+  integrand.progress = options.progress;
   const unsigned values = unsigned(integrand.functions * integrand.functions);
   std::vector<double> value(values), error(values);
   ExactGold gold;

@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "kernel/coupling.h"
 
@@ -57,6 +58,9 @@ struct ExactGoldOptions {
   // needs 2 to 4 times more than at degree 0, the critical lines the same.
   std::uint64_t maxFloorPoints = 30000;
   std::uint64_t maxFloorPointsHigherDegrees = 120000;
+  // Called from the calling thread about once a second once the gold has run a second
+  // (receiver points so far, seconds); may be empty.
+  std::function<void(std::uint64_t points, double seconds)> progress;
 };
 
 struct ExactGold {

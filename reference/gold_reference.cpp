@@ -116,6 +116,7 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
     ExactGoldOptions exactOptions;
     exactOptions.tolerance = options.exactTolerance;
     exactOptions.maxEvaluations = options.maxEvaluations;
+    exactOptions.progress = options.progress;
     const ExactGold exact = exactGold(link, degree, exactOptions);
     gold = GoldReference{};
     gold.method = "exact visibility";

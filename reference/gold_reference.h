@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -54,6 +55,8 @@ struct GoldOptions {
   std::size_t maxExactOccluders = 64;
   int denseStrata = 24;
   int denseReplicates = 16;
+  // Exact visibility: progress reports (ExactGoldOptions::progress); may be empty.
+  std::function<void(std::uint64_t points, double seconds)> progress;
 };
 
 struct LambertCheck {

@@ -1,5 +1,5 @@
 // `radquad reference LINK.json [--degree D] [--seed S] [--replicates R] [--gold
-// [--gold-method exact|stratified] [--gold-tolerance T]]`: the paper's
+// [--gold-method exact|stratified] [--gold-tolerance T]] [--quiet]`: the paper's
 // 10,000-sample stratified reference of one link with its standard error, and optionally a
 // gold reference to measure how far it is off; prints one JSON object on stdout.
 //
@@ -10,6 +10,7 @@
 // kernel_evaluations, and gauss_points, tolerance, lambert_check (Gauss) or tolerance,
 // receiver_points, shaft_occluders, outer_method, critical_segments (exact visibility)} and `reference_minus_gold` = {form_factor,
 // max_abs_coupling, form_factor_in_standard_errors}.
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -32,6 +33,7 @@ struct ReferenceCommandOptions {
   bool gold = false;
   std::string goldMethod = "exact";
   double goldTolerance = GoldOptions{}.exactTolerance;
+  bool quiet = false;
 };
 
 const char* goldErrorKind(const std::string& method) {
@@ -82,6 +84,12 @@ void runReference(ReferenceCommandOptions options) {
   GoldOptions goldOptions;
   goldOptions.method = parseGoldMethod(options.goldMethod, "--gold-method");
   goldOptions.exactTolerance = options.goldTolerance;
+  if (!options.quiet) {
+    goldOptions.progress = [](std::uint64_t points, double seconds) {
+      std::fprintf(stderr, "radquad reference: gold: %llu receiver points, %.1f s\n",
+                   static_cast<unsigned long long>(points), seconds);
+    };
+  }
   const LinkDescription description = readLinkFile(options.linkPath);
   const SceneLink sceneLink = buildSceneLink(description);
   ReferenceOptions referenceOptions;
@@ -152,6 +160,9 @@ void addReferenceCommand(CLI::App& app) {
                    "Exact gold: estimated error relative to the largest |K| entry, in (0, 1)")
       ->check(CLI::Range(1e-15, 0.5))
       ->capture_default_str();
+  command->add_flag("--quiet", options->quiet,
+                    "No progress on stderr (the exact gold reports its receiver points about once "
+                    "a second once it has run a second)");
   command->callback([options] { runReference(*options); });
 }
 

@@ -167,6 +167,17 @@ assert gold["outer_method"] == "critical lines", gold["outer_method"]
 assert gold["critical_segments"] >= 2, gold["critical_segments"]
 PY
 check triangle_half_blocked $?
+# Progress of a slow gold (three overlapping blockers at a tight tolerance, about 3 s): lines
+# on stderr about once a second after the first second, none with --quiet; stdout the same.
+"$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-11 \
+  >"$scratch/slow.json" 2>"$scratch/slow.err"
+check slow_gold_status $?
+grep -q "radquad reference: gold: [0-9]* receiver points, [0-9.]* s" "$scratch/slow.err"
+check slow_gold_progress $?
+"$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-11 --quiet \
+  >"$scratch/slow_quiet.json" 2>"$scratch/slow_quiet.err"
+[ ! -s "$scratch/slow_quiet.err" ] && cmp -s "$scratch/slow.json" "$scratch/slow_quiet.json"
+check slow_gold_quiet $?
 expect_error bad_triangle "occluders[0].triangle: expected an array of 3 points" link "$fixtures/bad_triangle.json" --rule FullGauss
 
 # Rules from files: `rules --dump` writes a rule, `File:PATH` reads it back, and the link's
