@@ -1,9 +1,12 @@
 #include "experiments/rule_file.h"
 
+#include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "experiments/json_input.h"
+#include "experiments/npz_input.h"
 #include "kernel/input_error.h"
 #include "quadrature/registry.h"
 #include "quadrature/rules/data_rule.h"
@@ -54,6 +57,72 @@ nlohmann::json patchSetJson(const PatchSamples& samples) {
   nlohmann::json points = nlohmann::json::array();
   for (std::size_t k = 0; k < samples.size(); ++k) points.push_back({samples.u[k], samples.v[k]});
   return {{"points", points}, {"weights", samples.weight}};
+}
+
+// An array of `rows` x `columns` numbers (columns 0: a vector) as JSON rows.
+nlohmann::json npzMatrix(const NpyArray& array, std::size_t columns, const std::string& where) {
+  if (array.isString) throw InputError(where + ": expected numbers, not strings");
+  const bool shaped = columns == 0 ? array.shape.size() == 1
+                                   : array.shape.size() == 2 && array.shape[1] == columns;
+  if (!shaped) {
+    std::string shape = "(";
+    for (std::size_t k = 0; k < array.shape.size(); ++k) {
+      shape += (k ? ", " : "") + std::to_string(array.shape[k]);
+    }
+    throw InputError(where + ": shape " + shape + ") where " +
+                     (columns == 0 ? std::string("(N,)") : "(N, " + std::to_string(columns) + ")") +
+                     " is expected");
+  }
+  nlohmann::json out = nlohmann::json::array();
+  if (columns == 0) {
+    for (double value : array.numbers) out.push_back(value);
+    return out;
+  }
+  for (std::size_t row = 0; row < array.shape[0]; ++row) {
+    nlohmann::json point = nlohmann::json::array();
+    for (std::size_t c = 0; c < columns; ++c) point.push_back(array.numbers[row * columns + c]);
+    out.push_back(std::move(point));
+  }
+  return out;
+}
+
+std::string npzString(const NpyArray& array, const std::string& where) {
+  if (!array.isString || array.size() != 1) throw InputError(where + ": expected one string");
+  return array.strings.front();
+}
+
+// The .npz arrays as the JSON form of the rule: points/weights, or receiver_points,
+// receiver_weights, source_points, source_weights; name and citation strings, degree an
+// integer (absent: none declared). The name defaults to the file's stem.
+nlohmann::json npzRuleJson(const std::map<std::string, NpyArray>& arrays,
+                           const std::filesystem::path& path) {
+  const std::string where = path.string();
+  nlohmann::json rule = {{"name", path.stem().string()}};
+  for (const auto& [name, array] : arrays) {
+    const std::string member = where + ": " + name;
+    if (name == "name" || name == "citation") {
+      rule[name] = npzString(array, member);
+    } else if (name == "degree") {
+      if (array.isString || array.size() != 1) throw InputError(member + ": expected one integer");
+      const double degree = array.numbers.front();
+      if (degree != std::floor(degree) || std::fabs(degree) > 1e9) {
+        throw InputError(member + ": expected an integer");
+      }
+      rule["degree"] = (long long)(degree);
+    } else if (name == "points") {
+      rule["points"] = npzMatrix(array, 4, member);
+    } else if (name == "weights") {
+      rule["weights"] = npzMatrix(array, 0, member);
+    } else if (name == "receiver_points" || name == "source_points") {
+      rule[name.substr(0, name.find('_'))]["points"] = npzMatrix(array, 2, member);
+    } else if (name == "receiver_weights" || name == "source_weights") {
+      rule[name.substr(0, name.find('_'))]["weights"] = npzMatrix(array, 0, member);
+    } else {
+      throw InputError(member + ": unknown array (name, degree, citation, points, weights, "
+                       "receiver_points, receiver_weights, source_points, source_weights)");
+    }
+  }
+  return rule;
 }
 
 }  // namespace
@@ -110,6 +179,7 @@ std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std
 }
 
 std::shared_ptr<const Rule> loadRuleFile(const std::filesystem::path& path) {
+  if (path.extension() == ".npz") return parseRuleJson(npzRuleJson(readNpz(path), path), path.string());
   return parseRuleJson(readJsonFile(path), path.string());
 }
 

@@ -9,7 +9,11 @@
 //    "receiver": {"points": [[u, v], ...], "weights": [...]},
 //    "source":   {"points": [[u, v], ...], "weights": [...]}}
 // with (s, t, u, v) = (receiver u, receiver v, source u, source v) on [0, 1]^4. "degree" and
-// "citation" may be left out. Loading checks what quadrature/rules/data_rule.h lists (values
+// "citation" may be left out. A file whose name ends in .npz is NumPy's archive
+// (experiments/npz_input.h; numpy.savez or savez_compressed) with the same content as arrays:
+// points (N, 4) and weights (N,), or receiver_points (N, 2), receiver_weights, source_points,
+// source_weights; optional name and citation (strings; the name defaults to the file's
+// stem) and degree (an integer). Loading checks what quadrature/rules/data_rule.h lists (values
 // finite and in [0, 1], weights summing to 1, the declared degree) and names the file and the
 // failed check (InputError, exit status 2). Such rules are deterministic: the same points for
 // every seed.

@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libembree-dev libtbb-dev
   libgtest-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libstb-dev
-  libpolyclipping-dev libcubature-dev
+  libpolyclipping-dev libcubature-dev libzip-dev
   clang libclang-rt-14-dev
   python3-matplotlib python3-numpy
 )

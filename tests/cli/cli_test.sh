@@ -196,6 +196,45 @@ printf '{"name": "Half", "points": [[0.5, 0.5, 0.5, 0.5]], "weights": [0.5]}' >"
 expect_error file_rule_weights "half_rule.json: weights sum to" link "$fixtures/good_link.json" --rule "File:$scratch/half_rule.json"
 expect_error file_rule_missing "no_such_rule.json" link "$fixtures/good_link.json" --rule "File:$scratch/no_such_rule.json"
 
+# NumPy archives: a product rule (FullGauss, numpy.savez) and a 4D point set (Stroud65,
+# numpy.savez_compressed) written by numpy from the dumped JSON give the registered rules'
+# couplings digit for digit; an archive with a wrongly shaped array, or that is no archive, is
+# named with exit status 2.
+"$radquad" rules --dump Stroud65 >"$scratch/stroud_rule.json"
+"$python" - "$scratch" <<'PY'
+import json, sys
+import numpy as np
+scratch = sys.argv[1]
+full = json.load(open(scratch + "/fullgauss_rule.json"))
+np.savez(scratch + "/fullgauss.npz", name=np.array(full["name"]),
+         receiver_points=np.array(full["receiver"]["points"]),
+         receiver_weights=np.array(full["receiver"]["weights"]),
+         source_points=np.asfortranarray(np.array(full["source"]["points"])),
+         source_weights=np.array(full["source"]["weights"]),
+         degree=np.array(full["degree"], dtype=np.int32))
+stroud = json.load(open(scratch + "/stroud_rule.json"))
+np.savez_compressed(scratch + "/stroud.npz", points=np.array(stroud["points"]),
+                    weights=np.array(stroud["weights"]))
+np.savez(scratch + "/bad_shape.npz", points=np.zeros((3, 3)), weights=np.ones(3) / 3)
+PY
+check npz_written $?
+"$radquad" link "$fixtures/good_link.json" --rule "File:$scratch/fullgauss.npz" --degree 1 >"$scratch/from_npz.json"
+check npz_product_status $?
+"$radquad" link "$fixtures/good_link.json" --rule Stroud65 --degree 1 >"$scratch/stroud_registered.json"
+"$radquad" link "$fixtures/good_link.json" --rule "File:$scratch/stroud.npz" --degree 1 >"$scratch/stroud_npz.json"
+check npz_points_status $?
+"$python" - "$scratch" <<'PY'
+import json, sys
+scratch = sys.argv[1]
+for registered, loaded in (("registered", "from_npz"), ("stroud_registered", "stroud_npz")):
+    a, b = (json.load(open(f"{scratch}/{name}.json")) for name in (registered, loaded))
+    assert a["coupling"] == b["coupling"], (registered, a["coupling"], b["coupling"])
+PY
+check npz_round_trip $?
+expect_error npz_bad_shape "bad_shape.npz: points: shape (3, 3) where (N, 4) is expected" link "$fixtures/good_link.json" --rule "File:$scratch/bad_shape.npz"
+cp "$fixtures/good_link.json" "$scratch/not_an_archive.npz"
+expect_error npz_not_zip "not_an_archive.npz: not a readable .npz (zip) archive" link "$fixtures/good_link.json" --rule "File:$scratch/not_an_archive.npz"
+
 for command in "" link rules reference; do
   "$radquad" $command --help >/dev/null 2>&1
   check "help_$command" $?

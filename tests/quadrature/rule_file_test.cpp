@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "experiments/npz_input.h"
 #include "experiments/rule_file.h"
 #include "kernel/input_error.h"
 #include "quadrature/prepared_rule.h"
@@ -92,6 +93,55 @@ TEST(RuleFile, BadPointsAndWeightsAreRefusedNamingTheFile) {
   nlohmann::json short_point = midpoint(0);
   short_point["points"] = {{0.5, 0.5, 0.5}};
   refused(short_point, "expected 4 coordinates");
+}
+
+
+// A .npy member in NumPy's format 1.0: magic, version, header length, header, data.
+std::string npy(const std::string& header, const std::string& data) {
+  std::string padded = header;
+  while ((10 + padded.size() + 1) % 16 != 0) padded += ' ';
+  padded += '\n';
+  std::string out = "\x93NUMPY";
+  out += char(1);
+  out += char(0);
+  out += char(padded.size() & 0xff);
+  out += char(padded.size() >> 8);
+  return out + padded + data;
+}
+
+TEST(NpyArrays, LittleEndianNumbersInCAndFortranOrder) {
+  std::string data;
+  for (double value : {1.0, 2.0, 3.0, 4.0, 5.0, 6.0}) {
+    data.append(reinterpret_cast<const char*>(&value), 8);
+  }
+  // The same six numbers as a 2 x 3 array in C order, and as its Fortran-order reading.
+  const NpyArray c = parseNpy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", data), "c");
+  ASSERT_EQ(c.shape, (std::vector<std::size_t>{2, 3}));
+  EXPECT_EQ(c.numbers, (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  const NpyArray f = parseNpy(npy("{'descr': '<f8', 'fortran_order': True, 'shape': (2, 3), }", data), "f");
+  EXPECT_EQ(f.numbers, (std::vector<double>{1, 3, 5, 2, 4, 6}));
+  const std::int16_t small[3] = {-2, 0, 7};
+  const NpyArray i = parseNpy(npy("{'descr': '<i2', 'fortran_order': False, 'shape': (3,), }",
+                                  std::string(reinterpret_cast<const char*>(small), 6)), "i");
+  EXPECT_EQ(i.numbers, (std::vector<double>{-2, 0, 7}));
+}
+
+TEST(NpyArrays, BadMembersAreRefusedNamingThem) {
+  const std::string eight(8, '\0');
+  const auto refused = [](const std::string& bytes, const std::string& fragment) {
+    try {
+      parseNpy(bytes, "rule.npz: points");
+      ADD_FAILURE() << "accepted; expected " << fragment;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("rule.npz: points"), std::string::npos);
+      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos) << error.what();
+    }
+  };
+  refused("not numpy at all", "magic");
+  refused(npy("{'descr': '>f8', 'fortran_order': False, 'shape': (1,), }", eight), "big-endian");
+  refused(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", eight), "truncated");
+  refused(npy("{'descr': '|O', 'fortran_order': False, 'shape': (1,), }", eight), "dtype");
+  refused(npy("{'descr': '<f8', 'shape': (1,), }", eight), "fortran_order");
 }
 
 }  // namespace
