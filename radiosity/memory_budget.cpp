@@ -25,9 +25,23 @@ std::size_t physicalMemoryBytes() {
   return std::size_t(pages) * std::size_t(page);
 }
 
+std::size_t memoryLimitBytes() {
+  std::size_t limit = physicalMemoryBytes();
+  // A control group's limit (v2, then v1), when there is one below the physical memory.
+  for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::FILE* file = std::fopen(path, "r");
+    if (file == nullptr) continue;
+    unsigned long long value = 0;
+    const int read = std::fscanf(file, "%llu", &value);
+    std::fclose(file);
+    if (read == 1 && value > 0 && (limit == 0 || value < limit)) limit = std::size_t(value);
+  }
+  return limit;
+}
+
 std::size_t defaultMemoryBudget() {
   constexpr std::size_t kGiB = std::size_t(1) << 30;
-  const std::size_t physical = physicalMemoryBytes();
+  const std::size_t physical = memoryLimitBytes();
   if (physical == 0) return 64 * kGiB;
   return std::max(kGiB, physical / 4 * 3);
 }

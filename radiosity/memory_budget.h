@@ -15,7 +15,11 @@ std::size_t residentBytes();
 // Physical memory of the machine in bytes; 0 where unknown.
 std::size_t physicalMemoryBytes();
 
-// Three quarters of the physical memory (at least 1 GiB), or 64 GiB where it is unknown.
+// The physical memory, or the process's control group limit (cgroup v2 memory.max, or v1
+// memory.limit_in_bytes) where that is lower; 0 where unknown.
+std::size_t memoryLimitBytes();
+
+// Three quarters of memoryLimitBytes() (at least 1 GiB), or 64 GiB where it is unknown.
 std::size_t defaultMemoryBudget();
 
 }  // namespace radquad

@@ -46,7 +46,7 @@ void Solver::createInitialLinks() {
                         "); raise --max-links, or merge patches";
       return;
     }
-    if ((r % 64 == 63 || r + 1 == patches) && memoryExceeded("the initial linking")) return;
+    if ((r % 16 == 15 || r + 1 == patches) && memoryExceeded("the initial linking")) return;
     report(std::size_t(r + 1), 0);
   }
   // Classification casts rays for every link: in chunks, with progress between them.
@@ -57,6 +57,7 @@ void Solver::createInitialLinks() {
     created.resize(end - begin);
     for (std::size_t k = begin; k < end; ++k) created[k - begin] = int(k);
     classifyLinks(created);
+    if (memoryExceeded("the initial links' classification")) return;
     report(std::size_t(patches), end);
   }
 }

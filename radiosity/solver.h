@@ -74,9 +74,10 @@ struct SolverOptions {
   // per link before couplings; the couplings' own store comes on top).
   std::size_t maxElements = 10000000;
   std::size_t maxLinks = 100000000;
-  // The process's resident memory (radiosity/memory_budget.h), checked after the initial
-  // links, after every wave of refinement and after every integration pass; the solve fails
-  // with a message naming the budget when it is exceeded.
+  // The process's resident memory (radiosity/memory_budget.h), checked during the initial
+  // linking (every 16 patches, every chunk of classification), after every wave of
+  // refinement and after every integration pass; the solve fails with a message naming the
+  // budget when it is exceeded.
   std::size_t maxMemoryBytes = defaultMemoryBudget();
   // Links between touching elements (a shared edge or corner: the kernel is singular there)
   // are integrated by splitting both elements into quadrants, recursively to this depth,

@@ -117,9 +117,11 @@ class SegmentFinder {
 std::vector<ReceiverSegment> criticalSegments(
     const Patch& receiver, const Patch& source,
     const std::vector<std::vector<Eigen::Vector3d>>& occluders) {
+  // The link's size (not its coordinates' magnitude): the largest distance from the
+  // receiver's origin to a corner of either patch.
   double scale = 0.0;
-  for (const auto& c : receiver.corners()) scale = std::max(scale, c.cwiseAbs().maxCoeff());
-  for (const auto& c : source.corners()) scale = std::max(scale, c.cwiseAbs().maxCoeff());
+  for (const auto& c : receiver.corners()) scale = std::max(scale, (c - receiver.origin).norm());
+  for (const auto& c : source.corners()) scale = std::max(scale, (c - receiver.origin).norm());
   scale = std::max(scale, 1e-300);
   const SegmentFinder finder(receiver, scale);
   std::vector<ReceiverSegment> segments;
@@ -139,7 +141,16 @@ std::vector<ReceiverSegment> criticalSegments(
   for (const auto& polygon : occluders) {
     clipConvexPolygon(polygon, nr, receiverOffset, twice);
     clipConvexPolygon(twice, source.normal, sourceOffset, clipped);
-    if (clipped.size() >= 3) polygons.push_back(clipped);
+    if (clipped.size() < 3) continue;
+    polygons.push_back(clipped);
+    // Seen edge-on from x in its own plane, an occluder's shadow has no area and grows as
+    // |distance| on either side: a kink along the line where its plane meets the receiver's
+    // (and, for an occluder standing on the receiver's plane, the edge it stands on).
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (std::size_t k = 1; k + 1 < clipped.size(); ++k) {
+      normal += (clipped[k] - clipped[0]).cross(clipped[k + 1] - clipped[0]);
+    }
+    if (normal.norm() > 0.0) finder.planeLine(normal.normalized(), clipped[0], segments);
   }
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     for (std::size_t j = 0; j < polygons.size(); ++j) {

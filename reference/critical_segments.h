@@ -9,7 +9,8 @@
 //     a source vertex enters a shadow, a shadow vertex crosses another shadow's edge): x lies
 //     in the plane through P and E, on the part of it from which the nearer of the two is
 //     seen in front of the farther; on the receiver's plane that part is a segment;
-//   - x crosses the source's plane (the clamped cosine at the source).
+//   - x crosses the source's plane (the clamped cosine at the source), or an occluder's plane
+//     (seen edge-on, its shadow has no area and grows as the distance from that plane);
 // (The clamped cosine at x clips the source by the receiver's own plane, the same for every
 // x: no event.) The events left out are those of three edges (two shadow edges crossing
 // on a third edge), which lie on curves, not lines; the adaptive integration resolves them.

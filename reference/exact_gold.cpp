@@ -310,6 +310,12 @@ class CriticalLineCubature {
                      double innerTolerance) {
     const std::size_t m = std::size_t(pair_.points());
     const std::size_t lines = fresh.size() * m;
+    // A line's points: at most maxLinePoints, and its share of what is left of the budget
+    // (beyond its breakpoints' pieces, which it always takes).
+    const std::uint64_t left =
+        options_.maxEvaluations > points_ ? options_.maxEvaluations - points_ : 0;
+    const std::uint64_t cap =
+        std::min<std::uint64_t>(options_.maxLinePoints, left / std::max<std::size_t>(lines, 1));
     std::vector<Piece> lineResult(lines);
     std::vector<std::uint64_t> linePoints(lines, 0);
     // Progress is reported from the calling thread only, which takes part in the loop.
@@ -321,7 +327,8 @@ class CriticalLineCubature {
                         for (std::size_t l = range.begin(); l < range.end(); ++l) {
                           const Piece& piece = pieces[fresh[l / m]];
                           const double s = kronrodAbscissa(pair_, piece, int(l % m));
-                          linePoints[l] = integrateLine(worker, s, innerTolerance, lineResult[l]);
+                          linePoints[l] =
+                              integrateLine(worker, s, innerTolerance, cap, lineResult[l]);
                           done += linePoints[l];
                           if (std::this_thread::get_id() == caller) integrand_.report(points_ + done);
                         }
@@ -348,13 +355,14 @@ class CriticalLineCubature {
   }
 
   // g(s) and its error into `line` (value, error); returns the points taken.
-  std::uint64_t integrateLine(Worker& worker, double s, double tolerance, Piece& line) const {
+  std::uint64_t integrateLine(Worker& worker, double s, double tolerance, std::uint64_t cap,
+                              Piece& line) const {
     std::vector<Piece> pieces = piecesBetween(crossingsAt(segments_, s));
     std::uint64_t points = 0;
     for (Piece& piece : pieces) points += evaluateInner(worker, s, piece);
     for (;;) {
       sumPieces(pieces, values_, line.value, line.error);
-      if (largestAbs(line.error) <= tolerance || points >= options_.maxLinePoints) return points;
+      if (largestAbs(line.error) <= tolerance || points >= cap) return points;
       if (!halveWorst(pieces, [&](std::vector<Piece>& next, const std::vector<std::size_t>& at) {
             for (std::size_t k : at) {
               points += evaluateInner(worker, s, next[k]);

@@ -310,7 +310,7 @@ void addSolveCommand(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--max-memory", options->maxMemoryMiB,
-                   "Memory budget in MiB (default: 3/4 of the machine's memory): the solve fails "
+                   "Memory budget in MiB (default: 3/4 of the machine's or the control group's memory): the solve fails "
                    "(exit 3) when the process's resident memory exceeds it")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))
       ->capture_default_str();

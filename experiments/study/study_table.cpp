@@ -255,10 +255,14 @@ double meanOf(const std::vector<LinkRecord>& links, double (*pick)(const LinkRec
 }
 
 nlohmann::json goldNoiseShare(const std::vector<LinkRecord>& links, std::size_t r, bool fig2) {
+  // null where the share is not a finite number (a rule exactly on the gold while the gold
+  // has an error of its own): the check then fails.
   const auto share = [&](double (*own)(const LinkRecord&, std::size_t),
-                         double (*rule)(const LinkRecord&, std::size_t)) {
-    const double ruleMean = meanOf(links, rule, r);
-    return ruleMean > 0.0 ? meanOf(links, own, r) / ruleMean : 0.0;
+                         double (*rule)(const LinkRecord&, std::size_t)) -> nlohmann::json {
+    const double ownMean = meanOf(links, own, r), ruleMean = meanOf(links, rule, r);
+    if (ownMean == 0.0) return 0.0;
+    const double value = ownMean / ruleMean;
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
   };
   nlohmann::json out = {
       {"relative_error", share([](const LinkRecord& l, std::size_t) { return std::abs(l.goldRelativeError); },
@@ -439,7 +443,8 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
       for (const nlohmann::json& rule : rules) {
         if (!rule.contains("gold_noise_share")) continue;
         for (const auto& [metric, value] : rule["gold_noise_share"].items()) {
-          if (value.get<double>() > worst["share"].get<double>()) {
+          if (worst["share"].is_null()) return;
+          if (value.is_null() || value.get<double>() > worst["share"].get<double>()) {
             worst = {{"share", value}, {"class", className}, {"rule", rule["name"]},
                      {"metric", metric}};
           }
@@ -453,9 +458,10 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
         scan(className, classTableJson["rules"]);
       }
     }
-    table["gold"]["noise_check"] = {{"limit", kGoldNoiseLimit},
-                                    {"holds", worst["share"].get<double>() <= kGoldNoiseLimit},
-                                    {"worst", worst}};
+    table["gold"]["noise_check"] = {
+        {"limit", kGoldNoiseLimit},
+        {"holds", !worst["share"].is_null() && worst["share"].get<double>() <= kGoldNoiseLimit},
+        {"worst", worst}};
   }
   return table;
 }

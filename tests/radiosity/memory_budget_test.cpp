@@ -21,13 +21,16 @@ TEST(MemoryBudget, ResidentMemoryGrowsByTheBytesTouched) {
   EXPECT_LE(after, before + 2 * kBytes);
 }
 
-TEST(MemoryBudget, TheDefaultIsThreeQuartersOfThePhysicalMemory) {
+TEST(MemoryBudget, TheDefaultIsThreeQuartersOfTheMemoryLimit) {
   const std::size_t physical = physicalMemoryBytes();
   ASSERT_GT(physical, std::size_t(256) << 20);
+  const std::size_t limit = memoryLimitBytes();
+  EXPECT_GT(limit, 0u);
+  EXPECT_LE(limit, physical);
   const std::size_t budget = defaultMemoryBudget();
   EXPECT_GE(budget, std::size_t(1) << 30);
-  if (physical >= (std::size_t(4) << 30)) {
-    EXPECT_EQ(budget, physical / 4 * 3);
+  if (limit >= (std::size_t(4) << 30)) {
+    EXPECT_EQ(budget, limit / 4 * 3);
   }
 }
 

@@ -92,6 +92,24 @@ TEST(CriticalSegments, TheSourcePlaneCrossingTheReceiverIsALine) {
   EXPECT_NEAR(std::fabs(segments[0].b.y() - segments[0].a.y()), 1.0, 1e-12);
 }
 
+// A vertical plate at x = 0.5 between opposed squares: from a receiver point at distance d
+// from the plate's plane, the blocked width of the source grows as |d| (a kink at d = 0),
+// and no vertex-edge pair of two different polygons lies on s = 0.5: the plate's own plane
+// gives that line.
+TEST(CriticalSegments, AnOccluderSeenEdgeOnGivesTheLineOfItsPlane) {
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  const std::vector<std::vector<Eigen::Vector3d>> plate = {
+      {{0.5, -1, 0.3}, {0.5, 2, 0.3}, {0.5, 2, 0.7}, {0.5, -1, 0.7}}};
+  bool found = false;
+  for (const auto& segment : criticalSegments(receiver, source, plate)) {
+    found = found || (std::fabs(segment.a.x() - 0.5) < 1e-12 &&
+                      std::fabs(segment.b.x() - 0.5) < 1e-12 &&
+                      std::fabs(std::fabs(segment.b.y() - segment.a.y()) - 1.0) < 1e-12);
+  }
+  EXPECT_TRUE(found);
+}
+
 // The same integrand, two outer methods: critical lines (exponential convergence between
 // breakpoints) and Genz-Malik (bisection blind to them) agree within their summed estimates.
 void expectOuterMethodsAgree(const Link& link, int degree) {
@@ -127,6 +145,12 @@ TEST(CriticalLines, AgreeWithGenzMalikOnOccludedLinks) {
     scene.commit();
     expectOuterMethodsAgree(Link{receiver, source, &scene}, 0);
     expectOuterMethodsAgree(Link{receiver, source, &scene}, 2);
+  }
+  {  // a tilted plate seen edge-on from a line across the receiver
+    OccluderScene scene;
+    scene.addParallelogram(Patch::make({0.45, -0.5, 0.3}, {0, 2, 0}, {0.1, 0, 0.4}, "plate"));
+    scene.commit();
+    expectOuterMethodsAgree(Link{receiver, source, &scene}, 0);
   }
   {  // a steep source whose plane crosses the receiver, a blocker crossing the receiver's plane
     const Patch steep = Patch::make({1.0, 0.1, 0.9}, {0, 0.8, 0}, {-0.2, 0, -0.8}, "steep");
