@@ -10,7 +10,7 @@ runs="${1:-300000}"
 shift || true
 harnesses=("$@")
 if [ "${#harnesses[@]}" -eq 0 ]; then
-  harnesses=(link_loader scene_loader study_config rule_name link_integration rule_file)
+  harnesses=(link_loader scene_loader study_config rule_name link_integration rule_file npy_array)
 fi
 if ! command -v clang++ >/dev/null; then
   echo "run-fuzz: clang++ not found; the fuzz harnesses need clang (Debian package clang)" >&2
