@@ -106,7 +106,6 @@ int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* 
   return integrand->finite() ? 0 : 1;
 }
 
-
 // The points of one piece of a 1D adaptive integration, of a vector of functions.
 struct Piece {
   double a = 0.0, b = 0.0;
@@ -120,7 +119,7 @@ double largestAbs(const std::vector<double>& v) {
   return m;
 }
 
-// Folds the 15 samples of a piece (samples[j * values + v], point j of kronrodPoint) into
+// Folds the samples of a piece (samples[j * values + v] at the pair's point j) into
 // its value and error: the Kronrod sum, and its distance from the embedded Gauss sum (the
 // Gauss rule's error, a bound on the Kronrod rule's, which is far smaller on analytic pieces).
 void foldPiece(const GaussKronrodPair& pair, const double* samples, std::size_t values,
@@ -183,7 +182,7 @@ template <class Evaluate>
 bool halveWorst(std::vector<Piece>& pieces, Evaluate&& evaluate) {
   double largest = 0.0;
   for (const Piece& piece : pieces) largest = std::max(largest, piece.worst);
-  std::vector<Piece> next, halves;
+  std::vector<Piece> next;
   std::vector<std::size_t> at;
   for (const Piece& piece : pieces) {
     if (piece.worst > 0.0 && piece.worst >= 0.25 * largest && piece.b - piece.a > 1e-12) {
@@ -213,7 +212,7 @@ void sumPieces(const std::vector<Piece>& pieces, std::size_t values, std::vector
   }
 }
 
-// The outer integral as iterated adaptive Gauss-Kronrod (7, 15) with the critical segments
+// The outer integral as iterated adaptive Gauss-Kronrod (gauss_kronrod.h) with the critical segments
 // (critical_segments.h) as breakpoints: g(s) = int_0^1 f(s, t) dt along each line s = const,
 // the breakpoints where the line crosses a segment; the outer integral of g over s, the
 // breakpoints at the segments' ends and at segments along t. Between them the integrands are
@@ -304,8 +303,9 @@ class CriticalLineCubature {
     return largestAbs(total);
   }
 
-  // The 15 lines of every piece listed in `fresh`, computed in parallel, each to the absolute
-  // `innerTolerance`. A line's result depends on its s only, whatever the thread.
+  // The lines of every piece listed in `fresh` (one per point of the pair), computed in
+  // parallel, each to the absolute `innerTolerance`. A line's result depends on its s only,
+  // whatever the thread.
   void evaluateOuter(std::vector<Piece>& pieces, const std::vector<std::size_t>& fresh,
                      double innerTolerance) {
     const std::size_t m = std::size_t(pair_.points());
@@ -420,8 +420,9 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   };
   bool lines = options.outer == ExactOuterMethod::criticalLines;
   if (lines) {
-    std::vector<ReceiverSegment> segments =
-        criticalSegments(link.receiver, link.source, ExactVisibility(link).candidates());
+    // The shaft's occluders as one worker culled them (instead of culling once more).
+    std::vector<ReceiverSegment> segments = criticalSegments(
+        link.receiver, link.source, integrand.workers.local().visibility.candidates());
     gold.criticalSegments = segments.size();
     CriticalLineCubature cubature(integrand, std::move(segments), options);
     // Many segments make the breakpoints' product costly (floor ~ segments^2): then the
