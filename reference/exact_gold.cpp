@@ -34,9 +34,9 @@ struct Worker {
   std::vector<double> samples;  // scratch of the critical-line cubature
   bool finite = true;
 
-  Worker(const Link& link, int degree)
+  Worker(const Link& link, int degree, double innerAccuracy)
       : visibility(link),
-        moments(link.source, degree),
+        moments(link.source, degree, innerAccuracy),
         inner(std::size_t(basisFunctionCount(degree))),
         receiverValues(std::size_t(basisFunctionCount(degree))) {}
 };
@@ -62,12 +62,13 @@ struct OuterIntegrand {
     progress(pointsSoFar, now);
   }
 
-  OuterIntegrand(const Link& l, int d)
+  // The inner integrals to a hundredth of the outer tolerance (source_moments.h).
+  OuterIntegrand(const Link& l, int d, double tolerance)
       : link(l),
         degree(d),
         functions(basisFunctionCount(d)),
         scale(std::sqrt(l.receiver.area / l.source.area)),
-        workers([&l, d] { return Worker(l, d); }) {}
+        workers([&l, d, tolerance] { return Worker(l, d, 1e-2 * tolerance); }) {}
 
   void evaluate(Worker& worker, double s, double t, double* out) const {
     const Eigen::Vector3d x = link.receiver.pointAt(s, t);
@@ -403,7 +404,7 @@ const char* exactOuterMethodName(ExactOuterMethod method) {
 ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& options) {
   validateBasisDegree(degree);
   if (!(options.tolerance > 0.0)) throw InputError("exact gold: tolerance must be positive");
-  OuterIntegrand integrand(link, degree);
+  OuterIntegrand integrand(link, degree, options.tolerance);
   integrand.progress = options.progress;
   const unsigned values = unsigned(integrand.functions * integrand.functions);
   std::vector<double> value(values), error(values);
