@@ -410,14 +410,26 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   std::vector<double> value(values), error(values);
   ExactGold gold;
   auto genzMalik = [&] {
-    const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
-    const int status =
-        hcubature_v(values, integrandCallback, &integrand, 2, low, high, options.maxEvaluations,
-                    0.0, options.tolerance, ERROR_LINF, value.data(), error.data());
-    if (!integrand.finite()) {
-      throw ComputationError("exact gold: the inner integral was not finite");
+    // Genz-Malik's estimate (its embedded degree-5 rule) can miss what a run of few regions
+    // never samples, a thin shadow between its points: at a tolerance of 1e-4, 4 of 84 of the
+    // study's occluded links stopped after 17 to 800 points with an actual error 2 to 40
+    // times the estimate (against 1e-8 golds). A run that stops before minEvaluations points
+    // is repeated at a quarter of its tolerance (at most 5 times); the last run is the result.
+    double tolerance = options.tolerance;
+    for (int round = 0;; ++round) {
+      const std::uint64_t before = integrand.points;
+      if (before >= options.maxEvaluations) break;
+      const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
+      const int status = hcubature_v(values, integrandCallback, &integrand, 2, low, high,
+                                     options.maxEvaluations - before, 0.0, tolerance, ERROR_LINF,
+                                     value.data(), error.data());
+      if (!integrand.finite()) {
+        throw ComputationError("exact gold: the inner integral was not finite");
+      }
+      if (status != 0) throw ComputationError("exact gold: the cubature failed");
+      if (integrand.points - before >= options.minEvaluations || round == 5) break;
+      tolerance *= 0.25;
     }
-    if (status != 0) throw ComputationError("exact gold: the cubature failed");
   };
   bool lines = options.outer == ExactOuterMethod::criticalLines;
   if (lines) {

@@ -42,6 +42,9 @@ enum class ExactOuterMethod { criticalLines, genzMalik };
 struct ExactGoldOptions {
   double tolerance = 1e-7;             // estimated error / max |K| entry
   std::size_t maxEvaluations = 4000000;  // receiver points, each an exact inner integral
+  // Genz-Malik: a run that meets the tolerance in fewer receiver points is repeated at a
+  // quarter of it (exact_gold.cpp says why).
+  std::size_t minEvaluations = 4000;
   ExactOuterMethod outer = ExactOuterMethod::criticalLines;
   // Critical lines: the share of the tolerance left to the inner (t) integrals, and the
   // receiver points one line may take.
