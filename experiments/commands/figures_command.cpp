@@ -1,4 +1,4 @@
-// `radquad figures [--quick] [--gold]`: regenerates Figures 1 and 2: runs the study configs
+// `radquad figures [--quick] [--no-gold]`: regenerates Figures 1 and 2: runs the study configs
 // experiments/configs/fig1.json and fig2.json (synthetic links) and fig1-scene.json,
 // fig2-scene.json (the links of solves of the built-in scenes) (the -quick variants with
 // --quick) into results/<name>.json, then draws plots/<name>.{png,svg} with
@@ -27,7 +27,7 @@ namespace {
 
 struct FiguresOptions {
   bool quick = false;
-  bool gold = false;
+  bool gold = true;
   bool quiet = false;
   std::string resultsDir;
   std::string plotsDir;
@@ -110,7 +110,9 @@ void addFiguresCommand(CLI::App& app) {
       "and plots/fig{1,2}{,-scene}.{png,svg}");
   command->add_flag("--quick", options->quick,
                     "The small CI suites, into results/quick/ and plots/quick/");
-  command->add_flag("--gold", options->gold, "Also score against the gold reference (slow)");
+  command->add_flag("--gold,!--no-gold", options->gold,
+                    "Score against the gold reference (the default; --no-gold: against the "
+                    "paper's reference only, faster)");
   command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
   command->add_option("--results", options->resultsDir, "Directory of the JSON tables");
   command->add_option("--plots", options->plotsDir, "Directory of the figures");

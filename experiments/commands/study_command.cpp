@@ -1,4 +1,4 @@
-// `radquad study CONFIG.json --out FILE.json [--links-out FILE.jsonl] [--gold] [--rules A,B]
+// `radquad study CONFIG.json --out FILE.json [--links-out FILE.jsonl] [--no-gold] [--rules A,B]
 // [--seed S] [--threads T] [--quiet]`: scores the config's rules on
 // its generated links and writes the error table of Figure 1 or 2 (README.md, "The study").
 #include <tbb/global_control.h>
@@ -22,7 +22,7 @@ struct StudyCommandOptions {
   std::string configPath;
   std::string outPath;
   std::string linksOutPath;
-  bool gold = false;
+  bool gold = true;
   bool quiet = false;
   StudyOverrideOptions overrides;
 };
@@ -32,7 +32,7 @@ struct StudyCommandOptions {
 void addStudyCommand(CLI::App& app) {
   auto options = std::make_shared<StudyCommandOptions>();
   CLI::App* command = app.add_subcommand(
-      "study", "Score rules on a scenario suite against the reference; writes a JSON error table");
+      "study", "Score rules on a scenario suite against the gold and the paper's reference; writes a JSON error table");
   command->add_option("config", options->configPath, "CONFIG.json (experiments/configs/)")
       ->required();
   command->add_option("--out", options->outPath, "Where to write the table (atomically)")
@@ -40,8 +40,9 @@ void addStudyCommand(CLI::App& app) {
   command->add_option("--links-out", options->linksOutPath,
                       "Also write the per-link table: one JSON object per line, with the link's "
                       "geometry and every coupling (atomically)");
-  command->add_flag("--gold", options->gold,
-                    "Also score every rule and the reference against the gold reference");
+  command->add_flag("--gold,!--no-gold", options->gold,
+                    "Score every rule and the paper's reference against the gold reference "
+                    "(the default; --no-gold: against the paper's reference only)");
   command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
   options->overrides.addTo(command, "the config's");
   command->callback([options] {

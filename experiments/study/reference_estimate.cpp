@@ -69,12 +69,20 @@ nlohmann::json referenceOptionsToJson(const ReferenceOptions& options) {
   return {{"strata_per_axis", options.strataPerAxis}, {"replicates", options.replicates}};
 }
 
+GoldOptions studyGoldOptions() {
+  GoldOptions options;
+  options.exactTolerance = 1e-4;
+  options.denseStrata = 16;
+  options.denseReplicates = 8;
+  return options;
+}
+
 GoldOptions parseGoldOptions(const nlohmann::json& value, const std::string& where) {
   checkKeys(value, where,
             {"method", "tolerance", "exact_tolerance", "max_evaluations", "max_exact_occluders",
              "dense_strata", "dense_replicates"},
             {});
-  GoldOptions options;
+  GoldOptions options = studyGoldOptions();
   if (value.contains("method")) {
     if (!value["method"].is_string()) throw InputError(where + ": method must be a string");
     options.method = parseGoldMethod(value["method"].get<std::string>(), where + ": method");

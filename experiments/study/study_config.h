@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "experiments/scenarios/scenario.h"
+#include "experiments/study/reference_estimate.h"
 #include "experiments/study/scene_links.h"
 #include "reference/gold_reference.h"
 #include "reference/stratified_reference.h"
@@ -46,7 +47,7 @@ struct StudyConfig {
   std::vector<std::string> rules;
   int trials = 10;
   ReferenceOptions reference;
-  GoldOptions gold;
+  GoldOptions gold = studyGoldOptions();
   double minVisibleFraction = 0.05;
   double maxVisibleFraction = 0.95;
   int maxCandidatesPerLink = 40;

@@ -30,6 +30,20 @@ else
     grep -q -- "$field" "$work/good.out" || { echo "FAIL good: no $field"; failures=$((failures + 1)); }
   done
 fi
+# Scored against the gold by default (its options and the gold scores in the table, the
+# study's gold defaults where the config gives none); --no-gold scores against the paper's
+# reference only.
+"$radquad" study "$work/good.json" --out "$work/nogold.out" --no-gold --quiet ||
+  { echo "FAIL --no-gold: exit status $?"; failures=$((failures + 1)); }
+/usr/bin/python3 - "$work/good.out" "$work/nogold.out" <<'PY' || failures=$((failures + 1))
+import json, sys
+gold, plain = (json.load(open(path)) for path in sys.argv[1:3])
+assert gold["gold"]["options"]["exact_tolerance"] == 1e-4, gold["gold"]["options"]
+assert gold["gold"]["noise_check"]["holds"] in (True, False)
+assert "l1_error_bound_vs_gold" in gold["classes"]["partial"]["rules"][0], "no gold scores by default"
+assert "gold" not in plain, "--no-gold still scored against the gold"
+assert "l1_error_bound_vs_gold" not in plain["classes"]["partial"]["rules"][0]
+PY
 # The per-link table: one JSON line per scored link (4 here), written beside the table.
 if ! "$radquad" study "$work/good.json" --out "$work/links.out" --links-out "$work/links.jsonl" --quiet; then
   echo "FAIL links-out: nonzero exit status"; failures=$((failures + 1))
