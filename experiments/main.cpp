@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   radquad::addSolveCommand(app);
   radquad::addAdaptiveCommand(app);
   radquad::addTraceCommand(app);
+  radquad::addBaselineCommand(app);
+  radquad::addCheckCommand(app);
   // An unknown word where the command belongs is named (CLI11 would only say that a command
   // is required).
   if (argc > 1 && argv[1][0] != '-') {
@@ -46,6 +48,9 @@ int main(int argc, char** argv) {
   } catch (const radquad::ComputationError& error) {
     std::cerr << "radquad: computation failed: " << error.what() << "\n";
     return radquad::kComputationErrorExitStatus;
+  } catch (const radquad::CommandFailure& failure) {
+    std::cerr << "radquad: " << failure.what() << "\n";
+    return failure.status();
   } catch (const std::exception& error) {
     std::cerr << "radquad: internal error: " << error.what() << "\n";
     return 1;

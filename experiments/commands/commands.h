@@ -3,8 +3,22 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace radquad {
+
+// Thrown by a command whose own checks failed (its input was fine and its work done): main
+// prints the message and exits with `status` (radquad check: 1).
+class CommandFailure : public std::runtime_error {
+ public:
+  CommandFailure(const std::string& message, int status)
+      : std::runtime_error(message), status_(status) {}
+  int status() const { return status_; }
+
+ private:
+  int status_;
+};
 
 void addLinkCommand(CLI::App& app);
 void addReferenceCommand(CLI::App& app);
@@ -14,5 +28,7 @@ void addFiguresCommand(CLI::App& app);
 void addSolveCommand(CLI::App& app);
 void addAdaptiveCommand(CLI::App& app);
 void addTraceCommand(CLI::App& app);
+void addBaselineCommand(CLI::App& app);
+void addCheckCommand(CLI::App& app);
 
 }  // namespace radquad
