@@ -216,4 +216,17 @@ nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed) {
   return out;
 }
 
+nlohmann::json registeredRulesJson() {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& rule : namedRules()) {
+    const auto degree = rule->degree();
+    out.push_back({{"name", rule->name()},
+                   {"samples", rule->sampleCount()},
+                   {"degree", degree ? nlohmann::json(*degree) : nlohmann::json(nullptr)},
+                   {"family", rule->family()},
+                   {"citation", rule->citation()}});
+  }
+  return out;
+}
+
 }  // namespace radquad

@@ -36,6 +36,10 @@ std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std
 // `File:PATH` loads the file; any other name goes to the registry (quadrature/registry.h).
 std::shared_ptr<const Rule> findAnyRule(std::string_view name);
 
+// The registered rules as `radquad rules --json` lists them: {name, samples, degree (null for
+// random rules), family, citation}.
+nlohmann::json registeredRulesJson();
+
 // A rule's points of one draw (`seed`) in the file format; a product rule stays a product.
 nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed);
 

@@ -11,6 +11,7 @@ packages=(
   libpolyclipping-dev libcubature-dev libzip-dev
   clang libclang-rt-14-dev
   python3-matplotlib python3-numpy
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()

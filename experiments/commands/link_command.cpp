@@ -2,8 +2,6 @@
 // link with one rule and prints the coupling as one JSON object on stdout. With --trials T a
 // random rule runs T times with seeds S, S+1, ..., S+T-1 and the output adds the mean
 // coupling and form factor, the per-coefficient sample standard deviation and T.
-#include <algorithm>
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -11,11 +9,9 @@
 #include "experiments/rule_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/json_input.h"
+#include "experiments/link_reports.h"
 #include "experiments/trace_report.h"
 #include "kernel/input_error.h"
-#include "kernel/patch_intersection.h"
-#include "quadrature/prepared_rule.h"
-#include "quadrature/registry.h"
 
 namespace radquad {
 namespace {
@@ -29,40 +25,6 @@ struct LinkOptions {
   int trials = 1;
 };
 
-// Mean and sample standard deviation (denominator T-1) of T trials, entry by entry.
-nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
-                               const LinkOptions& options) {
-  CouplingAccumulator accumulator;
-  LinkIntegral integral;
-  Eigen::MatrixXd sum, squares;
-  double formFactorSum = 0.0, formFactorSquares = 0.0;
-  for (int trial = 0; trial < options.trials; ++trial) {
-    prepared.integrate(link, options.seed + std::uint64_t(trial), accumulator, integral);
-    if (trial == 0) {
-      sum = Eigen::MatrixXd::Zero(integral.coupling.rows(), integral.coupling.cols());
-      squares = sum;
-    }
-    sum += integral.coupling;
-    squares += integral.coupling.cwiseAbs2();
-    formFactorSum += integral.formFactor;
-    formFactorSquares += integral.formFactor * integral.formFactor;
-  }
-  const double count = options.trials;
-  const Eigen::MatrixXd mean = sum / count;
-  const double formFactorMean = formFactorSum / count;
-  const double denominator = count > 1 ? count - 1.0 : 1.0;
-  const Eigen::MatrixXd deviation =
-      ((squares - count * mean.cwiseAbs2()) / denominator).cwiseMax(0.0).cwiseSqrt();
-  const double formFactorDeviation = std::sqrt(
-      std::max(0.0, (formFactorSquares - count * formFactorMean * formFactorMean) / denominator));
-  return {{"trials", options.trials},
-          {"seeds", {options.seed, options.seed + std::uint64_t(options.trials) - 1}},
-          {"mean_form_factor", formFactorMean},
-          {"mean_coupling", matrixToJson(mean)},
-          {"standard_deviation",
-           {{"form_factor", formFactorDeviation}, {"coupling", matrixToJson(deviation)}}}};
-}
-
 void runLink(LinkOptions options) {
   options.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
   if (options.trials > 1 && options.seed > ~std::uint64_t(0) - std::uint64_t(options.trials - 1)) {
@@ -70,55 +32,12 @@ void runLink(LinkOptions options) {
                      std::to_string(options.trials) + ": the last seed would pass 2^64 - 1");
   }
   const LinkDescription description = readLinkFile(options.linkPath);
-  const PreparedRule prepared(findAnyRule(options.ruleName), options.degree);
-  const SceneLink sceneLink = buildSceneLink(description);
-  const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
-  if (!integral.coupling.allFinite() || !std::isfinite(integral.formFactor)) {
-    throw ComputationError(options.linkPath + ": rule " + prepared.rule().name() +
-                           " gave a non-finite coupling");
-  }
-  const auto declared = prepared.rule().degree();
-  nlohmann::json out = {
-      {"rule", prepared.rule().name()},
-      {"samples", prepared.rule().sampleCount()},
-      {"rule_degree", declared ? nlohmann::json(*declared) : nlohmann::json(nullptr)},
-      {"degree", options.degree},
-      {"seed", options.seed},
-      {"kernel_evaluations", integral.kernelEvaluations},
-      {"form_factor", integral.formFactor},
-      {"coupling", matrixToJson(integral.coupling)},
-      {"visible_fraction", integral.visibleFraction()},
-      {"rays_cast", integral.raysCast},
-  };
-  // Near-singular links and form factors outside [0, 1] are flagged, never printed as fine.
-  nlohmann::json warnings = nlohmann::json::array();
-  const double nearness = nearnessRatio(description.receiver, description.source);
-  if (nearness < kNearSingularRatio) {
-    warnings.push_back("near-singular link: the patches are " + std::to_string(nearness) +
-                       " of the smaller patch's shorter side apart (below " +
-                       std::to_string(kNearSingularRatio) +
-                       "); product rules converge slowly here and random rules' standard "
-                       "errors understate their error");
-  }
-  if (integral.formFactor > 1.0 + 1e-9 || integral.formFactor < -1e-9) {
-    warnings.push_back("form factor " + std::to_string(integral.formFactor) +
-                       " outside [0, 1]: the rule does not resolve this link");
-  }
-  if (!warnings.empty()) {
-    out["warnings"] = warnings;
-    for (const auto& warning : warnings) {
-      std::cerr << "radquad: warning: " << warning.get<std::string>() << "\n";
-    }
-  }
-  if (options.trials > 1) {
-    if (prepared.rule().isRandom()) {
-      out.update(trialStatistics(prepared, sceneLink.link, options));
-    } else {
-      std::cerr << "radquad: warning: rule " << prepared.rule().name()
-                << " is deterministic; --trials " << options.trials << " ignored\n";
-      out["trials"] = 1;
-    }
-  }
+  LinkReportOptions report;
+  report.degree = options.degree;
+  report.seed = options.seed;
+  report.trials = options.trials;
+  const nlohmann::json out = linkReport(description, findAnyRule(options.ruleName), report,
+                                        options.linkPath, &std::cerr);
   std::cout << out.dump(2) << "\n";
 }
 

@@ -17,6 +17,7 @@
 
 #include "experiments/commands/commands.h"
 #include "experiments/json_input.h"
+#include "experiments/link_reports.h"
 #include "experiments/trace_report.h"
 #include "reference/gold_reference.h"
 #include "reference/stratified_reference.h"
@@ -36,49 +37,6 @@ struct ReferenceCommandOptions {
   bool quiet = false;
 };
 
-const char* goldErrorKind(const std::string& method) {
-  if (method == "gauss product") return "difference of the last two Gauss orders";
-  if (method == "exact visibility") return "estimated absolute error of the adaptive cubature";
-  return "standard error of the mean";
-}
-
-nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options) {
-  nlohmann::json out = {
-      {"method", gold.method},
-      {"form_factor", gold.formFactor},
-      {"coupling", matrixToJson(gold.coupling)},
-      {"error",
-       {{"kind", goldErrorKind(gold.method)},
-        {"form_factor", gold.formFactorError},
-        {"coupling", matrixToJson(gold.couplingError)}}},
-      {"converged", gold.converged},
-      {"kernel_evaluations", gold.kernelEvaluations},
-  };
-  if (gold.method == "gauss product") {
-    out["gauss_points"] = gold.gaussPoints;
-    out["tolerance"] = options.tolerance;
-  }
-  if (gold.method == "exact visibility") {
-    out["tolerance"] = options.exactTolerance;
-    out["receiver_points"] = gold.receiverPoints;
-    out["shaft_occluders"] = gold.shaftOccluders;
-    out["outer_method"] = gold.outerMethod;
-    out["critical_segments"] = gold.criticalSegments;
-  }
-  if (gold.lambert) {
-    const LambertCheck& check = *gold.lambert;
-    nlohmann::json column = nlohmann::json::array();
-    for (Eigen::Index a = 0; a < check.column.size(); ++a) column.push_back(check.column[a]);
-    out["lambert_check"] = {{"source_function", 0},
-                            {"coupling_column", column},
-                            {"max_abs_difference_from_gold", check.maxDifference},
-                            {"outer_gauss_points", check.outerPoints},
-                            {"outer_error", check.error},
-                            {"converged", check.converged}};
-  }
-  return out;
-}
-
 void runReference(ReferenceCommandOptions options) {
   options.seed = parseDecimalOption(options.seedText, "--seed", 0, ~std::uint64_t(0));
   GoldOptions goldOptions;
@@ -91,40 +49,13 @@ void runReference(ReferenceCommandOptions options) {
     };
   }
   const LinkDescription description = readLinkFile(options.linkPath);
-  const SceneLink sceneLink = buildSceneLink(description);
-  ReferenceOptions referenceOptions;
-  referenceOptions.replicates = options.replicates;
-  const ReferenceEstimate estimate =
-      stratifiedReference(sceneLink.link, options.degree, options.seed, referenceOptions);
-  nlohmann::json out = {
-      {"link", options.linkPath},
-      {"rule", "Reference"},
-      {"samples", estimate.integral.kernelEvaluations},
-      {"degree", options.degree},
-      {"seed", options.seed},
-      {"replicates", estimate.replicates},
-      {"form_factor", estimate.integral.formFactor},
-      {"coupling", matrixToJson(estimate.integral.coupling)},
-      {"standard_error",
-       {{"method", "sample standard deviation of independent replicates"},
-        {"form_factor", estimate.formFactorStandardError},
-        {"coupling", matrixToJson(estimate.couplingStandardError)}}},
-      {"kernel_evaluations", estimate.totalKernelEvaluations},
-      {"visible_fraction", estimate.integral.visibleFraction()},
-  };
-  if (options.gold) {
-    const GoldReference gold =
-        goldReference(sceneLink.link, options.degree, options.seed, goldOptions);
-    out["gold"] = goldToJson(gold, goldOptions);
-    const double difference = estimate.integral.formFactor - gold.formFactor;
-    out["reference_minus_gold"] = {
-        {"form_factor", difference},
-        {"max_abs_coupling", (estimate.integral.coupling - gold.coupling).cwiseAbs().maxCoeff()},
-        {"form_factor_in_standard_errors", estimate.formFactorStandardError > 0.0
-                                               ? difference / estimate.formFactorStandardError
-                                               : 0.0}};
-  }
-  std::cout << out.dump(2) << "\n";
+  ReferenceReportOptions report;
+  report.degree = options.degree;
+  report.seed = options.seed;
+  report.replicates = options.replicates;
+  report.gold = options.gold;
+  report.goldOptions = goldOptions;
+  std::cout << referenceReport(description, report, options.linkPath).dump(2) << "\n";
 }
 
 }  // namespace

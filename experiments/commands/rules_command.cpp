@@ -17,15 +17,7 @@ namespace {
 void runRules(bool asJson) {
   const auto rules = namedRules();
   if (asJson) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& rule : rules) {
-      const auto degree = rule->degree();
-      out.push_back({{"name", rule->name()},
-                     {"samples", rule->sampleCount()},
-                     {"degree", degree ? nlohmann::json(*degree) : nlohmann::json(nullptr)},
-                     {"family", rule->family()},
-                     {"citation", rule->citation()}});
-    }
+    const nlohmann::json out = registeredRulesJson();
     std::cout << out.dump(2) << "\n";
     return;
   }

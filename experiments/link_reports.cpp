@@ -1,0 +1,196 @@
+#include "experiments/link_reports.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "experiments/trace_report.h"
+#include "kernel/input_error.h"
+#include "kernel/patch_intersection.h"
+#include "quadrature/prepared_rule.h"
+#include "reference/stratified_reference.h"
+
+namespace radquad {
+namespace {
+
+// Mean and sample standard deviation (denominator T-1) of T trials, entry by entry.
+nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
+                               const LinkReportOptions& options) {
+  CouplingAccumulator accumulator;
+  LinkIntegral integral;
+  Eigen::MatrixXd sum, squares;
+  double formFactorSum = 0.0, formFactorSquares = 0.0;
+  for (int trial = 0; trial < options.trials; ++trial) {
+    prepared.integrate(link, options.seed + std::uint64_t(trial), accumulator, integral);
+    if (trial == 0) {
+      sum = Eigen::MatrixXd::Zero(integral.coupling.rows(), integral.coupling.cols());
+      squares = sum;
+    }
+    sum += integral.coupling;
+    squares += integral.coupling.cwiseAbs2();
+    formFactorSum += integral.formFactor;
+    formFactorSquares += integral.formFactor * integral.formFactor;
+  }
+  const double count = options.trials;
+  const Eigen::MatrixXd mean = sum / count;
+  const double formFactorMean = formFactorSum / count;
+  const double denominator = count > 1 ? count - 1.0 : 1.0;
+  const Eigen::MatrixXd deviation =
+      ((squares - count * mean.cwiseAbs2()) / denominator).cwiseMax(0.0).cwiseSqrt();
+  const double formFactorDeviation = std::sqrt(
+      std::max(0.0, (formFactorSquares - count * formFactorMean * formFactorMean) / denominator));
+  return {{"trials", options.trials},
+          {"seeds", {options.seed, options.seed + std::uint64_t(options.trials) - 1}},
+          {"mean_form_factor", formFactorMean},
+          {"mean_coupling", matrixToJson(mean)},
+          {"standard_deviation",
+           {{"form_factor", formFactorDeviation}, {"coupling", matrixToJson(deviation)}}}};
+}
+
+const char* goldErrorKind(const std::string& method) {
+  if (method == "gauss product") return "difference of the last two Gauss orders";
+  if (method == "exact visibility") return "estimated absolute error of the adaptive cubature";
+  return "standard error of the mean";
+}
+
+}  // namespace
+
+nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options) {
+  nlohmann::json out = {
+      {"method", gold.method},
+      {"form_factor", gold.formFactor},
+      {"coupling", matrixToJson(gold.coupling)},
+      {"error",
+       {{"kind", goldErrorKind(gold.method)},
+        {"form_factor", gold.formFactorError},
+        {"coupling", matrixToJson(gold.couplingError)}}},
+      {"converged", gold.converged},
+      {"kernel_evaluations", gold.kernelEvaluations},
+  };
+  if (gold.method == "gauss product") {
+    out["gauss_points"] = gold.gaussPoints;
+    out["tolerance"] = options.tolerance;
+  }
+  if (gold.method == "exact visibility") {
+    out["tolerance"] = options.exactTolerance;
+    out["receiver_points"] = gold.receiverPoints;
+    out["shaft_occluders"] = gold.shaftOccluders;
+    out["outer_method"] = gold.outerMethod;
+    out["critical_segments"] = gold.criticalSegments;
+  }
+  if (gold.lambert) {
+    const LambertCheck& check = *gold.lambert;
+    nlohmann::json column = nlohmann::json::array();
+    for (Eigen::Index a = 0; a < check.column.size(); ++a) column.push_back(check.column[a]);
+    out["lambert_check"] = {{"source_function", 0},
+                            {"coupling_column", column},
+                            {"max_abs_difference_from_gold", check.maxDifference},
+                            {"outer_gauss_points", check.outerPoints},
+                            {"outer_error", check.error},
+                            {"converged", check.converged}};
+  }
+  return out;
+}
+
+nlohmann::json linkReport(const LinkDescription& description,
+                          const std::shared_ptr<const Rule>& rule,
+                          const LinkReportOptions& options, const std::string& where,
+                          std::ostream* log) {
+  if (options.trials > 1 && options.seed > ~std::uint64_t(0) - std::uint64_t(options.trials - 1)) {
+    throw InputError("seed " + std::to_string(options.seed) + " with " +
+                     std::to_string(options.trials) + " trials: the last seed would pass 2^64 - 1");
+  }
+  const PreparedRule prepared(rule, options.degree);
+  const SceneLink sceneLink = buildSceneLink(description);
+  const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
+  if (!integral.coupling.allFinite() || !std::isfinite(integral.formFactor)) {
+    throw ComputationError(where + ": rule " + prepared.rule().name() +
+                           " gave a non-finite coupling");
+  }
+  const auto declared = prepared.rule().degree();
+  nlohmann::json out = {
+      {"rule", prepared.rule().name()},
+      {"samples", prepared.rule().sampleCount()},
+      {"rule_degree", declared ? nlohmann::json(*declared) : nlohmann::json(nullptr)},
+      {"degree", options.degree},
+      {"seed", options.seed},
+      {"kernel_evaluations", integral.kernelEvaluations},
+      {"form_factor", integral.formFactor},
+      {"coupling", matrixToJson(integral.coupling)},
+      {"visible_fraction", integral.visibleFraction()},
+      {"rays_cast", integral.raysCast},
+  };
+  // Near-singular links and form factors outside [0, 1] are flagged, never printed as fine.
+  nlohmann::json warnings = nlohmann::json::array();
+  const double nearness = nearnessRatio(description.receiver, description.source);
+  if (nearness < kNearSingularRatio) {
+    warnings.push_back("near-singular link: the patches are " + std::to_string(nearness) +
+                       " of the smaller patch's shorter side apart (below " +
+                       std::to_string(kNearSingularRatio) +
+                       "); product rules converge slowly here and random rules' standard "
+                       "errors understate their error");
+  }
+  if (integral.formFactor > 1.0 + 1e-9 || integral.formFactor < -1e-9) {
+    warnings.push_back("form factor " + std::to_string(integral.formFactor) +
+                       " outside [0, 1]: the rule does not resolve this link");
+  }
+  if (!warnings.empty()) {
+    out["warnings"] = warnings;
+    if (log != nullptr) {
+      for (const auto& warning : warnings) {
+        *log << "radquad: warning: " << warning.get<std::string>() << "\n";
+      }
+    }
+  }
+  if (options.trials > 1) {
+    if (prepared.rule().isRandom()) {
+      out.update(trialStatistics(prepared, sceneLink.link, options));
+    } else {
+      if (log != nullptr) {
+        *log << "radquad: warning: rule " << prepared.rule().name()
+             << " is deterministic; --trials " << options.trials << " ignored\n";
+      }
+      out["trials"] = 1;
+    }
+  }
+  return out;
+}
+
+nlohmann::json referenceReport(const LinkDescription& description,
+                               const ReferenceReportOptions& options, const std::string& link) {
+  const SceneLink sceneLink = buildSceneLink(description);
+  ReferenceOptions referenceOptions;
+  referenceOptions.replicates = options.replicates;
+  const ReferenceEstimate estimate =
+      stratifiedReference(sceneLink.link, options.degree, options.seed, referenceOptions);
+  nlohmann::json out = {
+      {"link", link},
+      {"rule", "Reference"},
+      {"samples", estimate.integral.kernelEvaluations},
+      {"degree", options.degree},
+      {"seed", options.seed},
+      {"replicates", estimate.replicates},
+      {"form_factor", estimate.integral.formFactor},
+      {"coupling", matrixToJson(estimate.integral.coupling)},
+      {"standard_error",
+       {{"method", "sample standard deviation of independent replicates"},
+        {"form_factor", estimate.formFactorStandardError},
+        {"coupling", matrixToJson(estimate.couplingStandardError)}}},
+      {"kernel_evaluations", estimate.totalKernelEvaluations},
+      {"visible_fraction", estimate.integral.visibleFraction()},
+  };
+  if (options.gold) {
+    const GoldReference gold =
+        goldReference(sceneLink.link, options.degree, options.seed, options.goldOptions);
+    out["gold"] = goldToJson(gold, options.goldOptions);
+    const double difference = estimate.integral.formFactor - gold.formFactor;
+    out["reference_minus_gold"] = {
+        {"form_factor", difference},
+        {"max_abs_coupling", (estimate.integral.coupling - gold.coupling).cwiseAbs().maxCoeff()},
+        {"form_factor_in_standard_errors", estimate.formFactorStandardError > 0.0
+                                               ? difference / estimate.formFactorStandardError
+                                               : 0.0}};
+  }
+  return out;
+}
+
+}  // namespace radquad
