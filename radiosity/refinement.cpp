@@ -9,24 +9,20 @@
 #include <numbers>
 #include <utility>
 
+#include "kernel/progress_throttle.h"
 #include "radiosity/solver_impl.h"
 
 namespace radquad {
 
 void Solver::createInitialLinks() {
-  const auto start = std::chrono::steady_clock::now();
-  double reported = 0.0;
-  const auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  ProgressThrottle throttle;
   const int patches = int(scene_.patches.size());
   const auto report = [&](std::size_t patchesDone, std::size_t classified) {
     if (!options_.linkingProgress) return;
-    const double now = elapsed();
-    if (now < 1.0 || now - reported < 1.0) return;
-    reported = now;
-    options_.linkingProgress(
-        LinkingProgress{patchesDone, std::size_t(patches), links_.size(), classified, now});
+    if (const auto now = throttle.due()) {
+      options_.linkingProgress(
+          LinkingProgress{patchesDone, std::size_t(patches), links_.size(), classified, *now});
+    }
   };
   for (int r = 0; r < patches; ++r) {
     for (int s = 0; s < patches; ++s) {

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <thread>
@@ -15,6 +14,7 @@
 
 #include "kernel/input_error.h"
 #include "kernel/legendre_basis.h"
+#include "kernel/progress_throttle.h"
 #include "quadrature/gauss_legendre.h"
 #include "reference/critical_segments.h"
 #include "reference/exact_visibility.h"
@@ -50,16 +50,11 @@ struct OuterIntegrand {
   std::uint64_t points = 0;
   // Progress (ExactGoldOptions::progress), from the calling thread.
   std::function<void(std::uint64_t, double)> progress;
-  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-  double reported = 0.0;
+  ProgressThrottle throttle;
 
   void report(std::uint64_t pointsSoFar) {
     if (!progress) return;
-    const double now =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (now < 1.0 || now - reported < 1.0) return;
-    reported = now;
-    progress(pointsSoFar, now);
+    if (const auto now = throttle.due()) progress(pointsSoFar, *now);
   }
 
   // The inner integrals to a hundredth of the outer tolerance (source_moments.h).
