@@ -11,7 +11,7 @@ link's size of K.
 Breakdowns (<stem>-breakdown): every rule's mean error over FullGauss's on the same links,
 with its 95% interval, by occluder kind and by distance band (centre distance over the
 longest side); below 1 the rule beats FullGauss there.
-Tables scored against the gold (`--gold`) are drawn against the gold, with the paper's
+Tables scored against the gold (the default; not with `--no-gold`) are drawn against the gold, with the paper's
 10,000-sample reference as one more bar (its own error against the gold). Tables of
 scene-derived links (fig1-scene.json, fig2-scene.json, when present) are drawn the same way.
 
@@ -70,7 +70,7 @@ def figure1(table, plots, stem):
     rules = list(table["rules"])
     gold = "relative_error_vs_gold" in rules[0]
     key = "relative_error_vs_gold" if gold else "relative_error"
-    if gold:
+    if gold and not any(rule["name"] == "Reference" for rule in rules):
         reference = table["reference"]
         rules.append({"name": "Reference", "samples": reference["samples"],
                       key: reference["relative_error_vs_gold"]})
@@ -102,7 +102,8 @@ def figure2(table, plots, stem):
     if gold:
         for class_name in order:
             reference = classes[class_name]["reference"]
-            if "l1_error_bound_vs_gold" in reference:
+            if "l1_error_bound_vs_gold" in reference and not any(
+                    rule["name"] == "Reference" for rule in bars[class_name]):
                 bars[class_name].append({"name": "Reference", **{
                     k: reference[k] for k in (key, "relative_frobenius_error_vs_gold") if k in reference}})
     names = [rule["name"] for rule in bars[order[0]]]

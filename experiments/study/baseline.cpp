@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -44,12 +45,17 @@ nlohmann::json suiteOf(const nlohmann::json& table) {
 // The candidates scored, per class: the links themselves. A visibility ray that rounds the
 // other way on another machine can accept or reject a candidate near the visible-fraction
 // limits; then every rule's scores are of other links, and no band can say anything.
-nlohmann::json linksOf(const nlohmann::json& table) {
+nlohmann::json linksOf(const nlohmann::json& table, const std::string& where) {
   nlohmann::json links = nlohmann::json::object();
-  auto candidates = [](const nlohmann::json& perLink) {
+  auto candidates = [&](const nlohmann::json& perLink) {
     nlohmann::json ids = nlohmann::json::array();
-    if (perLink.is_array()) {
-      for (const auto& link : perLink) ids.push_back(link.value("candidate", -1));
+    if (!perLink.is_array()) throw InputError(where + ": per_link is not a list");
+    for (const auto& link : perLink) {
+      if (!link.is_object() || !link.contains("candidate") ||
+          !link["candidate"].is_number_integer()) {
+        throw InputError(where + ": a per_link entry has no integer candidate");
+      }
+      ids.push_back(link["candidate"]);
     }
     return ids;
   };
@@ -77,10 +83,14 @@ std::vector<std::pair<std::string, double>> metricsOf(const nlohmann::json& rule
     const std::string key = metric + suffix;
     if (!rule.contains(key)) return;
     const auto& value = rule[key];
-    if (!value.contains(statistic) || !value[statistic].is_number()) {
+    if (!value.is_object() || !value.contains(statistic) ||
+        !(value[statistic].is_number() || value[statistic].is_null())) {
       throw InputError(where + ": " + key + " has no number '" + statistic + "'");
     }
-    out.emplace_back(key + "." + statistic, value[statistic].get<double>());
+    // A score that was not finite is written as null: it fails every band.
+    out.emplace_back(key + "." + statistic, value[statistic].is_null()
+                                                ? std::numeric_limits<double>::quiet_NaN()
+                                                : value[statistic].get<double>());
   };
   for (const char* statistic : {"mean", "median", "p90"}) add("relative_error", statistic);
   for (const char* statistic : {"mean", "median", "p90"}) add("relative_frobenius_error", statistic);
@@ -140,9 +150,57 @@ void checkBaselineShape(const nlohmann::json& baseline, const std::string& where
   }
 }
 
+// What makes `table` another suite than `baseline`'s ("" when it is the same): its options,
+// its links, or what it was scored against.
+std::string suiteDifference(const nlohmann::json& baseline, const nlohmann::json& table,
+                            const std::string& where) {
+  const std::string difference = firstDifference(baseline["suite"], suiteOf(table));
+  if (!difference.empty()) return difference;
+  if (baseline["links"] != linksOf(table, where)) {
+    return "the links (a candidate accepted or rejected by a visibility ray that rounds "
+           "differently here, or another generator)";
+  }
+  const auto classes = rulesByClass(table, where);
+  const bool gold = scoredAgainstGold(*classes.begin()->second);
+  if (baseline["scored_against"] != (gold ? "gold" : "the paper's reference")) {
+    return std::string("what it is scored against (the table: ") +
+           (gold ? "the gold" : "the paper's reference") + ", the baseline: " +
+           baseline["scored_against"].get<std::string>() + ")";
+  }
+  return "";
+}
+
+nlohmann::json makeBaselineUnchecked(const nlohmann::json& table, const std::string& tableName,
+                                     const std::vector<std::string>& rules,
+                                     const nlohmann::json* existing, const BaselineMargin& margin);
+CheckReport checkTableUnchecked(const nlohmann::json& table, const std::string& tableName,
+                                const nlohmann::json& baseline, const std::string& baselineName);
+
 }  // namespace
 
+// Malformed JSON of the right syntax (a string where a number belongs) is bad input too.
 nlohmann::json makeBaseline(const nlohmann::json& table, const std::string& tableName,
+                            const std::vector<std::string>& rules, const nlohmann::json* existing,
+                            const BaselineMargin& margin) {
+  try {
+    return makeBaselineUnchecked(table, tableName, rules, existing, margin);
+  } catch (const nlohmann::json::exception& error) {
+    throw InputError(tableName + ": " + error.what());
+  }
+}
+
+CheckReport checkTable(const nlohmann::json& table, const std::string& tableName,
+                       const nlohmann::json& baseline, const std::string& baselineName) {
+  try {
+    return checkTableUnchecked(table, tableName, baseline, baselineName);
+  } catch (const nlohmann::json::exception& error) {
+    throw InputError(tableName + " or " + baselineName + ": " + error.what());
+  }
+}
+
+namespace {
+
+nlohmann::json makeBaselineUnchecked(const nlohmann::json& table, const std::string& tableName,
                             const std::vector<std::string>& rules, const nlohmann::json* existing,
                             const BaselineMargin& margin) {
   const auto classes = rulesByClass(table, tableName);
@@ -153,19 +211,16 @@ nlohmann::json makeBaseline(const nlohmann::json& table, const std::string& tabl
                "per rule, class and metric, [low, high] = value -+ (relative margin x value + "
                "absolute margin)."},
       {"suite", suiteOf(table)},
-      {"links", linksOf(table)},
+      {"links", linksOf(table, tableName)},
       {"scored_against", gold ? "gold" : "the paper's reference"},
       {"margin", {{"relative", margin.relative}, {"absolute", margin.absolute}}},
       {"rules", nlohmann::json::object()}};
   if (existing != nullptr) {
     checkBaselineShape(*existing, "the existing baseline");
-    const std::string difference = firstDifference((*existing)["suite"], baseline["suite"]);
-    if (!difference.empty() || (*existing)["scored_against"] != baseline["scored_against"] ||
-        (*existing)["links"] != baseline["links"]) {
+    const std::string difference = suiteDifference(*existing, table, tableName);
+    if (!difference.empty()) {
       throw InputError(tableName + ": a different suite from the existing baseline's: " +
-                       (!difference.empty() ? difference
-                        : (*existing)["links"] != baseline["links"] ? std::string("its links")
-                                                                    : std::string("scored_against")));
+                       difference);
     }
     baseline["rules"] = (*existing)["rules"];
   }
@@ -177,6 +232,10 @@ nlohmann::json makeBaseline(const nlohmann::json& table, const std::string& tabl
       found.push_back(name);
       nlohmann::json bands = nlohmann::json::object();
       for (const auto& [metric, value] : metricsOf(rule, gold, tableName)) {
+        if (!std::isfinite(value)) {
+          throw InputError(tableName + ": " + name + " (" + className + ") " + metric +
+                           " is not finite: no band can be made of it");
+        }
         const double half = margin.relative * std::abs(value) + margin.absolute;
         bands[metric] = {{"value", value}, {"low", value - half}, {"high", value + half}};
       }
@@ -191,6 +250,8 @@ nlohmann::json makeBaseline(const nlohmann::json& table, const std::string& tabl
   return baseline;
 }
 
+}  // namespace
+
 bool CheckReport::holds() const {
   if (!missing.empty() || !unbaselined.empty()) return false;
   return std::all_of(checks.begin(), checks.end(), [](const BoundCheck& c) { return c.holds; });
@@ -202,10 +263,15 @@ std::string CheckReport::summary() const {
   for (const BoundCheck& c : checks) {
     if (c.holds) continue;
     ++failed;
-    out << "FAIL " << c.rule << " (" << c.className << ") " << c.metric << " = " << format(c.value)
-        << (c.value > c.high ? " above its bound " + format(c.high)
-                             : " below its bound " + format(c.low))
-        << " (band [" << format(c.low) << ", " << format(c.high) << "])\n";
+    out << "FAIL " << c.rule << " (" << c.className << ") " << c.metric;
+    if (std::isnan(c.value)) {
+      out << ": not in the table, or not finite";
+    } else {
+      out << " = " << format(c.value)
+          << (c.value > c.high ? " above its bound " + format(c.high)
+                               : " below its bound " + format(c.low));
+    }
+    out << " (band [" << format(c.low) << ", " << format(c.high) << "])\n";
   }
   for (const std::string& name : missing) out << "FAIL " << name << ": baselined, not in the table\n";
   for (const std::string& name : unbaselined) {
@@ -217,68 +283,71 @@ std::string CheckReport::summary() const {
   return out.str();
 }
 
-CheckReport checkTable(const nlohmann::json& table, const std::string& tableName,
-                       const nlohmann::json& baseline, const std::string& baselineName) {
+namespace {
+
+// Every band of the baseline is checked: a rule of the baseline absent from the table is
+// `missing`; a class or metric of a present rule absent from the table fails its band (a
+// score that disappeared is no score that holds).
+CheckReport checkTableUnchecked(const nlohmann::json& table, const std::string& tableName,
+                                const nlohmann::json& baseline, const std::string& baselineName) {
   checkBaselineShape(baseline, baselineName);
   const auto classes = rulesByClass(table, tableName);
-  const std::string difference = firstDifference(baseline["suite"], suiteOf(table));
+  const std::string difference = suiteDifference(baseline, table, tableName);
   if (!difference.empty()) {
-    throw InputError(tableName + ": not the suite of " + baselineName + ": " + difference);
-  }
-  if (baseline["links"] != linksOf(table)) {
-    throw InputError(tableName + ": the suite's links are not " + baselineName +
-                     "'s (a candidate accepted or rejected by a visibility ray that rounds "
-                     "differently here): its scores cannot be compared; re-baseline on this "
-                     "machine");
+    throw InputError(tableName + ": not the suite of " + baselineName + ": " + difference +
+                     "; its scores cannot be compared (re-baseline if the suite is meant)");
   }
   const bool gold = scoredAgainstGold(*classes.begin()->second);
-  if (baseline["scored_against"] != (gold ? "gold" : "the paper's reference")) {
-    throw InputError(tableName + ": scored against " +
-                     (gold ? std::string("the gold") : std::string("the paper's reference")) +
-                     ", " + baselineName + " against " +
-                     baseline["scored_against"].get<std::string>());
-  }
+  // The table's scores: rule -> class -> metric -> value.
+  std::map<std::string, std::map<std::string, std::map<std::string, double>>> scores;
   CheckReport report;
-  std::vector<std::string> seen;
   for (const auto& [className, list] : classes) {
     for (const auto& rule : *list) {
       const std::string name = ruleName(rule, tableName);
-      if (std::find(seen.begin(), seen.end(), name) == seen.end()) seen.push_back(name);
-      if (!baseline["rules"].contains(name)) {
-        if (std::find(report.unbaselined.begin(), report.unbaselined.end(), name) ==
-            report.unbaselined.end()) {
-          report.unbaselined.push_back(name);
-        }
-        continue;
-      }
-      const auto& perClass = baseline["rules"][name];
-      if (!perClass.is_object() || !perClass.contains(className) ||
-          !perClass[className].is_object()) {
-        throw InputError(baselineName + ": " + name + " has no bands for class " + className);
-      }
       for (const auto& [metric, value] : metricsOf(rule, gold, tableName)) {
-        if (!perClass[className].contains(metric)) {
-          throw InputError(baselineName + ": " + name + " (" + className + ") has no band for " +
-                           metric);
-        }
-        const auto& band = perClass[className][metric];
+        scores[name][className][metric] = value;
+      }
+      if (!baseline["rules"].contains(name) &&
+          std::find(report.unbaselined.begin(), report.unbaselined.end(), name) ==
+              report.unbaselined.end()) {
+        report.unbaselined.push_back(name);
+      }
+    }
+  }
+  for (const auto& [name, perClass] : baseline["rules"].items()) {
+    const auto found = scores.find(name);
+    if (found == scores.end()) {
+      report.missing.push_back(name);
+      continue;
+    }
+    if (!perClass.is_object()) throw InputError(baselineName + ": " + name + ": not an object");
+    for (const auto& [className, bands] : perClass.items()) {
+      if (!bands.is_object()) {
+        throw InputError(baselineName + ": " + name + " (" + className + "): not an object");
+      }
+      for (const auto& [metric, band] : bands.items()) {
         if (!band.is_object() || !band.contains("low") || !band["low"].is_number() ||
             !band.contains("high") || !band["high"].is_number()) {
           throw InputError(baselineName + ": " + name + " (" + className + ") " + metric +
                            ": a band needs numbers low and high");
         }
-        BoundCheck check{name, className, metric, value, band["low"].get<double>(),
-                         band["high"].get<double>(), false};
-        check.holds = std::isfinite(value) && value >= check.low && value <= check.high;
+        BoundCheck check{name, className, metric, std::numeric_limits<double>::quiet_NaN(),
+                         band["low"].get<double>(), band["high"].get<double>(), false};
+        const auto inClass = found->second.find(className);
+        if (inClass != found->second.end()) {
+          const auto value = inClass->second.find(metric);
+          if (value != inClass->second.end()) check.value = value->second;
+        }
+        check.holds = std::isfinite(check.value) && check.value >= check.low &&
+                      check.value <= check.high;
         report.checks.push_back(check);
       }
     }
   }
-  for (const auto& [name, bands] : baseline["rules"].items()) {
-    if (std::find(seen.begin(), seen.end(), name) == seen.end()) report.missing.push_back(name);
-  }
   return report;
 }
+
+}  // namespace
 
 std::string junitXml(const CheckReport& report, const std::string& suiteName) {
   std::size_t failures = report.missing.size() + report.unbaselined.size();

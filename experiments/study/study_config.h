@@ -8,9 +8,11 @@
 //   trials      independent trials of each random rule per link (default 10)
 //   reference   the paper's reference: {"strata_per_axis": 10, "replicates": 10}; the
 //               replicates (independent draws) estimate its own standard error
-//   gold        the gold reference used with --gold: {"method": "exact", "tolerance": 1e-9,
-//               "exact_tolerance": 1e-7, "max_evaluations", "max_exact_occluders": 64,
-//               "dense_strata": 24, "dense_replicates": 16} (reference/gold_reference.h)
+//   gold        the gold reference every rule is scored against (unless --no-gold):
+//               {"method": "exact", "tolerance": 1e-9, "exact_tolerance": 1e-4,
+//               "max_evaluations": 2000000, "max_exact_occluders": 64, "dense_strata": 16,
+//               "dense_replicates": 8} (the study's defaults, studyGoldOptions in
+//               reference_estimate.h; reference/gold_reference.h)
 //   links       optional: {"scene": NAME or PATH, "degree": 2, "bf_eps": 0.05}: the links of
 //               a solve of that scene instead of generated ones (experiments/study/
 //               scene_links.h); `geometry` and `visible_fraction` then do not apply

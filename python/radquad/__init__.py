@@ -27,9 +27,6 @@ from . import _radquad
 
 __all__ = ["Rule", "rules", "integrate", "reference", "study"]
 
-_MATRIX_KEYS = ("coupling", "mean_coupling")
-
-
 def _seed(seed, what="seed"):
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
         raise ValueError(f"{what} must be an integer, not {type(seed).__name__}")
@@ -137,20 +134,27 @@ def reference(link, degree=0, seed=0, replicates=10, gold=False, gold_method="ex
 
 
 def study(config, rules=None, seed=None, gold=True):
-    """A study suite's table, as `radquad study` writes it (but for git_commit and the
-    config's path), scored against the gold unless gold=False.
+    """A study suite's table, as `radquad study` writes it (without the config's path),
+    scored against the gold unless gold=False.
 
-    config: a dict in the study config's form, or the path of a config file. rules: names or
-    radquad.Rule objects, instead of the config's (Rule objects are scored as File: rules,
-    under their names)."""
+    config: a dict in the study config's form, or the path of a config file. rules: a list of
+    names or radquad.Rule objects, instead of the config's (Rule objects are scored as File:
+    rules, under their names, which the table's options record)."""
     if isinstance(config, (str, os.PathLike)):
         with open(config) as handle:
             config = json.load(handle)
     if not isinstance(config, dict):
         raise ValueError("config must be a dict or the path of a study config")
+    if rules is not None and not isinstance(rules, (list, tuple)):
+        raise ValueError("rules must be a list of names or radquad.Rule objects")
+    rules = list(rules or [])
+    labels = [rule.name if isinstance(rule, Rule) else rule for rule in rules]
+    repeated = sorted({label for label in labels if labels.count(label) > 1})
+    if repeated:
+        raise ValueError(f"rules: {', '.join(map(str, repeated))} named twice")
     with tempfile.TemporaryDirectory(prefix="radquad-rules-") as folder:
         names = []
-        for k, rule in enumerate(rules or []):
+        for k, rule in enumerate(rules):
             if isinstance(rule, Rule):
                 path = os.path.join(folder, f"rule{k}.json")
                 with open(path, "w") as handle:
@@ -160,4 +164,7 @@ def study(config, rules=None, seed=None, gold=True):
                 names.append(_rule_argument(rule))
         result = _radquad.study(json.dumps(config, allow_nan=False), names, seed is not None,
                                 _seed(seed) if seed is not None else 0, bool(gold))
-    return json.loads(result)
+    table = json.loads(result)
+    if rules:
+        table["options"]["rules"] = labels  # not the temporary files' paths
+    return table

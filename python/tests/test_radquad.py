@@ -108,7 +108,8 @@ def test_study_with_a_python_rule_matches_the_command_line(tmp_path):
         for key in ("elapsed_seconds", "git_commit"):
             table.pop(key)
         table["options"].pop("config_path", None)
-        table["options"]["rules"] = ["FullGauss", "Rooks"]
+    assert python["options"]["rules"] == ["FullGauss", "Rooks"]
+    command["options"]["rules"] = ["FullGauss", "Rooks"]  # the command line names the file
     assert python == command
     assert [r["name"] for r in python["classes"]["partial"]["rules"]] == ["FullGauss", "Rooks"]
     assert "l1_error_bound_vs_gold" in python["classes"]["partial"]["rules"][0]
@@ -121,6 +122,10 @@ def test_errors_are_value_errors_with_the_command_lines_messages(tmp_path):
         radquad.Rule(np.full((2, 4), 0.5), [0.5, 0.6])
     with pytest.raises(ValueError, match="shape"):
         radquad.Rule(np.full((2, 3), 0.5), [0.5, 0.5])
+    with pytest.raises(ValueError, match="named twice"):
+        radquad.study({}, rules=["FullGauss", "FullGauss"])
+    with pytest.raises(ValueError, match="a list"):
+        radquad.study({}, rules="FullGauss")
     with pytest.raises(ValueError, match="outside 0..2"):
         radquad.integrate(half_link(), "MonteCarlo", seed=-1)
     bad = half_link()

@@ -78,6 +78,32 @@ for rule in FullGauss LinSrcGauss Stroud65 HierStroud; do
   done
 done
 
+# Scores that disappear fail their bands (exit 1): a rule dropped from one class only, a
+# metric dropped from one rule, a score that was not finite (written as null).
+/usr/bin/python3 - "$work" <<'PY' || fail "writing the tables with missing scores"
+import json, sys
+work = sys.argv[1]
+table = json.load(open(f"{work}/fig2.json"))
+one_class = json.loads(json.dumps(table))
+one_class["classes"]["partial"]["rules"] = [
+    r for r in one_class["classes"]["partial"]["rules"] if r["name"] != "HierStroud"]
+json.dump(one_class, open(f"{work}/one_class.json", "w"))
+no_metric = json.loads(json.dumps(table))
+del no_metric["classes"]["unoccluded"]["rules"][0]["relative_frobenius_error_vs_gold"]
+json.dump(no_metric, open(f"{work}/no_metric.json", "w"))
+not_finite = json.loads(json.dumps(table))
+not_finite["classes"]["partial"]["rules"][1]["l1_error_bound_vs_gold"]["total"] = None
+json.dump(not_finite, open(f"{work}/not_finite.json", "w"))
+PY
+for case in one_class:HierStroud no_metric:FullGauss not_finite:LinSrcGauss; do
+  name=${case%%:*}; rule=${case#*:}
+  "$radquad" check "$work/$name.json" --baseline "$root/tests/baselines/quick/fig2.json" > "$work/$name.check"
+  status=$?
+  [[ $status -eq 1 ]] || fail "$name: check exit status $status, expected 1"
+  grep -q "^FAIL $rule .*not in the table, or not finite" "$work/$name.check" || {
+    fail "$name: no failure naming $rule's missing score"; cat "$work/$name.check"; }
+done
+
 # Bad input: another suite's table, other links, not a table (exit 2, naming the problem).
 expect_input_error() {  # name, table, baseline, text the message must contain
   "$radquad" check "$2" --baseline "$3" > /dev/null 2> "$work/$1.err"
@@ -90,7 +116,12 @@ expect_input_error other_suite "$work/fig1.json" "$root/tests/baselines/quick/fi
 import json, sys
 t = json.load(open(sys.argv[1])); t['classes']['partial']['per_link'][0]['candidate'] += 100000
 json.dump(t, open(sys.argv[2], 'w'))" "$work/fig2.json" "$work/other_links.json"
-expect_input_error other_links "$work/other_links.json" "$root/tests/baselines/quick/fig2.json" "links are not"
+expect_input_error other_links "$work/other_links.json" "$root/tests/baselines/quick/fig2.json" "the links"
+/usr/bin/python3 -c "
+import json, sys
+t = json.load(open(sys.argv[1])); t['classes']['partial']['per_link'][0] = 5
+json.dump(t, open(sys.argv[2], 'w'))" "$work/fig2.json" "$work/bad_per_link.json"
+expect_input_error bad_per_link "$work/bad_per_link.json" "$root/tests/baselines/quick/fig2.json" "no integer candidate"
 printf '[1, 2]' > "$work/array.json"
 expect_input_error not_a_table "$work/array.json" "$root/tests/baselines/quick/fig2.json" "not a study table"
 expect_input_error not_a_baseline "$work/fig2.json" "$work/fig2.json" "not a radquad baseline"
