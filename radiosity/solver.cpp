@@ -162,6 +162,7 @@ void Solver::computeCouplings() {
   std::vector<int> todo;
   std::vector<std::array<int, 4>> rules;
   std::vector<bool> again;
+  std::vector<bool> composites;
   for (std::size_t k = 0; k < links_.size(); ++k) {
     SolverLink& link = links_[k];
     if (!link.active) continue;
@@ -196,6 +197,7 @@ void Solver::computeCouplings() {
       impl_->couplings.release(keptColumns(link), std::exchange(link.slot, -1));
     }
     link.gatherPoints = kept;
+    composites.push_back(composite);
     if (link.slot < 0) link.slot = impl_->couplings.allocate(keptColumns(link));
   }
   const auto stored = std::chrono::steady_clock::now();
@@ -233,6 +235,9 @@ void Solver::computeCouplings() {
       statistics_.recomputationEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
     }
     statistics_.integrationRays += rays[k];
+    if (composites[k]) {
+      statistics_.compositeEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
+    }
   }
   statistics_.kernelEvaluations += statistics_.ruleCheckEvaluations - checksBefore;
   statistics_.couplingComputations += todo.size();

@@ -150,6 +150,10 @@ struct SolveStatistics {
   std::uint64_t couplingComputations = 0;      // links integrated (first time or again)
   std::uint64_t recomputations = 0;            // links integrated again with a new rule
   std::uint64_t recomputationEvaluations = 0;  // kernel evaluations of those (included above)
+  // Kernel evaluations of links integrated with composite rules (touching elements, or one
+  // cut by the other's plane: link_integration.h), included above. The rest went to links
+  // integrated with one product rule.
+  std::uint64_t compositeEvaluations = 0;
   // Unoccluded kernel evaluations of the adaptive rules' kernel check (included above).
   std::uint64_t ruleCheckEvaluations = 0;
   std::uint64_t classificationRays = 0;

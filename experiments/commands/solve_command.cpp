@@ -172,6 +172,7 @@ void runSolve(const SolveCommandOptions& command) {
       {"coupling_computations", statistics.couplingComputations},
       {"recomputations", statistics.recomputations},
       {"recomputation_kernel_evaluations", statistics.recomputationEvaluations},
+      {"composite_kernel_evaluations", statistics.compositeEvaluations},
       {"rule_check_kernel_evaluations", statistics.ruleCheckEvaluations},
       {"links",
        {{"unoccluded", statistics.unoccludedLinks},
@@ -211,6 +212,7 @@ void runSolve(const SolveCommandOptions& command) {
     const auto [difference, norm] = hierarchy.l2Difference(fixed.hierarchy());
     out["comparison"] = {
         {"fixed_kernel_evaluations", fixed.statistics().kernelEvaluations},
+        {"fixed_composite_kernel_evaluations", fixed.statistics().compositeEvaluations},
         {"fixed_elapsed_seconds", fixed.statistics().elapsedSeconds},
         {"fixed_coupling_seconds", fixed.statistics().couplingSeconds},
         {"relative_l2_difference", norm > 0.0 ? difference / norm : 0.0},

@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include "radiosity/kernel_curvature.h"
+#include "radiosity/link_integration.h"
 #include "radiosity/solver.h"
 #include "tests/radiosity/scenes_for_tests.h"
 
@@ -192,6 +193,53 @@ TEST(AdaptiveSolverTest, EveryPatchWithinOnePercentOfTheFixedRulesOnCornell) {
       }
     }
     EXPECT_LT(worst, 0.01) << ruleChoiceName(choice) << ": " << where;
+  }
+}
+
+// The composite share of the kernel evaluations (SolveStatistics::compositeEvaluations):
+// none between two squares three sides apart that face each other (neither near nor cut by
+// the other's plane); in the furnace, whose faces touch, the evaluations of the links that
+// the composite predicate selects, recounted link by link, and those include every link
+// between touching elements.
+TEST(AdaptiveSolverTest, CompositeEvaluationsAreThoseOfNearOrCutLinks) {
+  {
+    Scene apart = testing::opposedSquaresScene(0.5);
+    apart.patches[1].patch = Patch::make(3.0 * Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(),
+                                         Eigen::Vector3d::UnitX(), "receiver");
+    Solver solver(apart, optionsFor(1, RuleChoice::kFixed, 0.1, 0.05));
+    solver.solve();
+    EXPECT_GT(solver.statistics().kernelEvaluations, 0u);
+    EXPECT_EQ(solver.statistics().compositeEvaluations, 0u);
+  }
+  const Scene furnace = testing::furnaceScene(1.0, 0.5);
+  for (RuleChoice choice : {RuleChoice::kFixed, RuleChoice::kAdaptive}) {
+    const SolverOptions options = optionsFor(1, choice, 0.1, 0.2);
+    Solver solver(furnace, options);
+    solver.solve();
+    std::uint64_t composite = 0, touching = 0, total = 0;
+    // Every link integrated, those split afterwards included (they keep their count).
+    for (const SolverLink& link : solver.links()) {
+      if (link.kernelEvaluations == 0) continue;
+      const Patch& r = solver.hierarchy()[link.receiver].geometry;
+      const Patch& s = solver.hierarchy()[link.source].geometry;
+      total += link.kernelEvaluations;
+      if (LinkIntegrator::composite(r, s, options.singularDepth)) composite += link.kernelEvaluations;
+      if (elementsTouch(r, s)) touching += link.kernelEvaluations;
+    }
+    const SolveStatistics& statistics = solver.statistics();
+    EXPECT_GT(touching, 0u);
+    EXPECT_LE(touching, composite);
+    EXPECT_LT(composite, total);
+    if (choice == RuleChoice::kFixed) {
+      EXPECT_EQ(statistics.recomputations, 0u);
+      EXPECT_EQ(statistics.kernelEvaluations, total);
+      EXPECT_EQ(statistics.compositeEvaluations, composite);
+    } else {
+      // A link integrated again counts once per computation; links() holds the last.
+      EXPECT_GE(statistics.compositeEvaluations, composite);
+      EXPECT_LE(statistics.compositeEvaluations,
+                composite + statistics.recomputationEvaluations);
+    }
   }
 }
 
