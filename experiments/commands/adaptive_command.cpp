@@ -54,11 +54,12 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
   if (command.threads > 0) {
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(command.threads));
   }
-  const std::filesystem::path root = sourceRoot();
+  // Outputs default to the current folder's results/ and plots/.
   const std::filesystem::path results =
-      command.resultsDir.empty() ? root / "results" : std::filesystem::path(command.resultsDir);
+      command.resultsDir.empty() ? std::filesystem::path("results")
+                                 : std::filesystem::path(command.resultsDir);
   const std::filesystem::path plots =
-      command.plotsDir.empty() ? root / "plots" : std::filesystem::path(command.plotsDir);
+      command.plotsDir.empty() ? std::filesystem::path("plots") : std::filesystem::path(command.plotsDir);
   createOutputDirectory(results / "plate1");
   createOutputDirectory(plots);
 
@@ -105,8 +106,10 @@ void addAdaptiveCommand(CLI::App& app) {
                    "Solves of each table configuration; its times are the fastest")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  command->add_option("--results", options->resultsDir, "Directory of the JSON and the plate");
-  command->add_option("--plots", options->plotsDir, "Directory of plots/adaptive.png");
+  command->add_option("--results", options->resultsDir,
+                      "Directory of the JSON and the plate (default: results/ in the current directory)");
+  command->add_option("--plots", options->plotsDir,
+                      "Directory of adaptive.png (default: plots/ in the current directory)");
   command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 4096))

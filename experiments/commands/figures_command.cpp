@@ -36,14 +36,15 @@ struct FiguresOptions {
 };
 
 void runFigures(const FiguresOptions& options) {
-  const std::filesystem::path root = sourceRoot();
+  const std::filesystem::path root = dataRoot();
   const std::string suffix = options.quick ? "-quick" : "";
+  // Outputs default to the current folder's results/ and plots/.
   const std::filesystem::path results = !options.resultsDir.empty()
                                             ? std::filesystem::path(options.resultsDir)
-                                            : root / (options.quick ? "results/quick" : "results");
+                                            : std::filesystem::path(options.quick ? "results/quick" : "results");
   const std::filesystem::path plots = !options.plotsDir.empty()
                                           ? std::filesystem::path(options.plotsDir)
-                                          : root / (options.quick ? "plots/quick" : "plots");
+                                          : std::filesystem::path(options.quick ? "plots/quick" : "plots");
   const StudyOverrides overrides = options.overrides.overrides();
   const char* figures[] = {"fig1", "fig2", "fig1-scene", "fig2-scene"};
   // Every config is read, and every overriding rule looked up, before the first study runs.
@@ -114,8 +115,10 @@ void addFiguresCommand(CLI::App& app) {
                     "Score against the gold reference (the default; --no-gold: against the "
                     "paper's reference only, faster)");
   command->add_flag("--quiet", options->quiet, "No progress lines on stderr");
-  command->add_option("--results", options->resultsDir, "Directory of the JSON tables");
-  command->add_option("--plots", options->plotsDir, "Directory of the figures");
+  command->add_option("--results", options->resultsDir,
+                      "Directory of the JSON tables (default: results/, or results/quick/, in the current directory)");
+  command->add_option("--plots", options->plotsDir,
+                      "Directory of the figures (default: plots/, or plots/quick/, in the current directory)");
   command->add_option("--python", options->python, "Python with matplotlib")->capture_default_str();
   options->overrides.addTo(command, "every config's");
   command->callback([options] { runFigures(*options); });

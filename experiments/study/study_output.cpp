@@ -13,6 +13,9 @@
 #ifndef RADQUAD_SOURCE_DIR
 #define RADQUAD_SOURCE_DIR "."
 #endif
+#ifndef RADQUAD_DATA_FROM_BIN
+#define RADQUAD_DATA_FROM_BIN "../share/radquad"
+#endif
 
 namespace radquad {
 namespace {
@@ -30,12 +33,24 @@ std::string commandOutput(const std::string& command) {
 
 }  // namespace
 
-std::filesystem::path sourceRoot() {
+std::filesystem::path dataRoot() {
+  if (const char* folder = std::getenv("RADQUAD_DATA_DIR"); folder != nullptr && *folder) {
+    return folder;
+  }
+  std::error_code error;
+  const std::filesystem::path command = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed = command.parent_path() / RADQUAD_DATA_FROM_BIN;
+    if (std::filesystem::is_directory(installed / "experiments" / "configs", error)) {
+      return installed.lexically_normal();
+    }
+  }
   return RADQUAD_SOURCE_DIR;
 }
 
 std::string gitCommit() {
-  const std::string git = "git -C " + shellQuoted(sourceRoot().string()) + " ";
+  if (dataRoot() != std::filesystem::path(RADQUAD_SOURCE_DIR)) return "unknown";
+  const std::string git = "git -C " + shellQuoted(std::string(RADQUAD_SOURCE_DIR)) + " ";
   const std::string head = commandOutput(git + "rev-parse HEAD 2>/dev/null");
   if (head.size() != 40) return "unknown";
   // The tables and figures a run writes do not count as changes to the code that made them.
@@ -54,7 +69,7 @@ void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet) {
   const std::string command =
-      shellQuoted(python) + " " + shellQuoted((sourceRoot() / "plots" / script).string()) +
+      shellQuoted(python) + " " + shellQuoted((dataRoot() / "plots" / script).string()) +
       " --results " + shellQuoted(results.string()) + " --plots " + shellQuoted(plots.string());
   if (!quiet) std::cerr << "radquad " << commandName << ": " << command << "\n";
   if (std::system(command.c_str()) != 0) {
@@ -96,7 +111,7 @@ nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::
   // Relative to the source tree when inside it, so committed tables name no machine's paths.
   const auto absolute = std::filesystem::weakly_canonical(configPath);
   const auto relative =
-      absolute.lexically_relative(std::filesystem::weakly_canonical(sourceRoot()));
+      absolute.lexically_relative(std::filesystem::weakly_canonical(dataRoot()));
   const bool inside = !relative.empty() && *relative.begin() != "..";
   table["options"]["config_path"] = inside ? relative.string() : configPath.string();
   writeFileAtomically(outPath, table.dump(2) + "\n");

@@ -13,11 +13,15 @@
 
 namespace radquad {
 
-// The source tree the binary was built from (configs, plots/ scripts, results/).
-std::filesystem::path sourceRoot();
+// Where the commands find the files they read: experiments/configs/ (the figures' study
+// configs) and plots/ (the plot scripts). In order: the folder RADQUAD_DATA_DIR names, when
+// set; for an installed command (`cmake --install`), share/radquad beside its bin/ folder,
+// wherever the installed tree was moved; otherwise the source tree it was built from.
+std::filesystem::path dataRoot();
 
 // `git rev-parse HEAD` of the source tree, with "-modified" appended when tracked files
-// outside results/ and plots/ differ from it; "unknown" outside a repository.
+// outside results/ and plots/ differ from it; "unknown" outside a repository and for an
+// installed command (its data are not a checkout).
 std::string gitCommit();
 
 // `text` as one single-quoted word for the POSIX shell.
