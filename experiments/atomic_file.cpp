@@ -12,9 +12,26 @@
 
 namespace radquad {
 
+namespace {
+
+// A device, a pipe or a socket at the output path would be replaced by the renamed result
+// (as root, /dev/full would become a regular file): refused.
+void refuseSpecialFile(const std::filesystem::path& path, const std::string& named) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    throw InputError(named + ": not a regular file (a device, a pipe or a socket); refusing to "
+                             "replace it");
+  }
+}
+
+}  // namespace
+
 void checkOutputPath(const std::filesystem::path& path, const std::string& option,
                      const std::vector<std::filesystem::path>& inputs) {
   const std::string named = option + " " + path.string();
+  if (path.empty()) throw InputError(option + ": an empty path");
   std::error_code error;
   for (const std::filesystem::path& input : inputs) {
     if (std::filesystem::exists(path, error) && std::filesystem::equivalent(path, input, error)) {
@@ -31,9 +48,23 @@ void checkOutputPath(const std::filesystem::path& path, const std::string& optio
     throw InputError(named + ": cannot write in " + directory.string() + " (" +
                      std::strerror(errno) + ")");
   }
+  refuseSpecialFile(path, named);
+  // Permissions do not tell everything (a read-only or virtual file system such as /sys or
+  // /proc): the temporary file the result will be written to is created and removed now.
+  std::string pattern = (directory / (path.filename().string() + ".tmp.XXXXXX")).string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int descriptor = mkstemp(name.data());
+  if (descriptor < 0) {
+    throw InputError(named + ": cannot write in " + directory.string() + " (" +
+                     std::strerror(errno) + ")");
+  }
+  ::close(descriptor);
+  ::unlink(name.data());
 }
 
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
+  refuseSpecialFile(path, path.string());
   const std::filesystem::path directory =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::string pattern = (directory / (path.filename().string() + ".tmp.XXXXXX")).string();

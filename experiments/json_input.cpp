@@ -24,7 +24,15 @@ std::uint64_t maxInputBytes() {
   return parsed;
 }
 
+std::string quotedKey(const std::string& key) {
+  constexpr std::size_t kShown = 80;
+  if (key.size() <= kShown) return key;
+  return key.substr(0, kShown) + "... (" + std::to_string(key.size()) + " characters)";
+}
+
 nlohmann::json readJsonFile(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(path.string() + ": is a folder");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot open for reading");
   // Read at most the cap plus one byte, so that a device or a pipe without end (/dev/zero)
@@ -55,7 +63,7 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& where) 
     if (event == Event::key && !openObjects.empty()) {
       const std::string key = parsed.get<std::string>();
       for (const std::string& seen : openObjects.back()) {
-        if (seen == key) throw InputError(where + ": duplicate key '" + key + "'");
+        if (seen == key) throw InputError(where + ": duplicate key '" + quotedKey(key) + "'");
       }
       openObjects.back().push_back(key);
     }
@@ -80,7 +88,8 @@ void checkKeys(const nlohmann::json& object, const std::string& where,
     if (!known) {
       std::string list;
       for (const char* key : allowed) list += std::string(list.empty() ? "" : ", ") + key;
-      throw InputError(where + ": unknown key '" + item.key() + "' (allowed: " + list + ")");
+      throw InputError(where + ": unknown key '" + quotedKey(item.key()) + "' (allowed: " + list +
+                       ")");
     }
   }
   for (const char* key : required) {

@@ -25,8 +25,13 @@ namespace radquad {
 inline constexpr std::uint64_t kDefaultMaxInputBytes = 256ull << 20;
 std::uint64_t maxInputBytes();
 
-// Reads and parses a JSON file; InputError names the path when it cannot be read or parsed,
-// or is larger than maxInputBytes() (devices and pipes included: reading stops there).
+// A key as error messages quote it: at most its first 80 characters (an input may hold a
+// key of megabytes).
+std::string quotedKey(const std::string& key);
+
+// Reads and parses a JSON file; InputError names the path when it cannot be read or parsed
+// (a folder is named as one), or is larger than maxInputBytes() (devices and pipes included:
+// reading stops there).
 nlohmann::json readJsonFile(const std::filesystem::path& path);
 // The same rules (duplicate keys, non-finite literals) on text in memory; `where` names it.
 nlohmann::json parseJsonText(const std::string& text, const std::string& where);

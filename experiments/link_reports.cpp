@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "experiments/rule_file.h"
 #include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "kernel/patch_intersection.h"
@@ -91,6 +92,39 @@ nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options)
   return out;
 }
 
+namespace {
+
+// A link's warnings (near-singular, form factor outside [0, 1]); `what` names the estimate.
+nlohmann::json linkWarnings(const LinkDescription& description, double formFactor,
+                            const std::string& what) {
+  nlohmann::json warnings = nlohmann::json::array();
+  const double nearness = nearnessRatio(description.receiver, description.source);
+  if (nearness < kNearSingularRatio) {
+    warnings.push_back("near-singular link: the patches are " + std::to_string(nearness) +
+                       " of the smaller patch's shorter side apart (below " +
+                       std::to_string(kNearSingularRatio) +
+                       "); product rules converge slowly here and random rules' standard "
+                       "errors understate their error");
+  }
+  if (formFactor > 1.0 + 1e-9 || formFactor < -1e-9) {
+    warnings.push_back("form factor " + std::to_string(formFactor) + " outside [0, 1]: " + what +
+                       " does not resolve this link");
+  }
+  return warnings;
+}
+
+// `warnings` into the report (when there are any) and onto `log`.
+void addWarnings(nlohmann::json& out, const nlohmann::json& warnings, std::ostream* log) {
+  if (warnings.empty()) return;
+  out["warnings"] = warnings;
+  if (log == nullptr) return;
+  for (const auto& warning : warnings) {
+    *log << "radquad: warning: " << warning.get<std::string>() << "\n";
+  }
+}
+
+}  // namespace
+
 nlohmann::json linkReport(const LinkDescription& description,
                           const std::shared_ptr<const Rule>& rule,
                           const LinkReportOptions& options, const std::string& where,
@@ -99,6 +133,7 @@ nlohmann::json linkReport(const LinkDescription& description,
     throw InputError("seed " + std::to_string(options.seed) + " with " +
                      std::to_string(options.trials) + " trials: the last seed would pass 2^64 - 1");
   }
+  checkSampleBudget(*rule, rule->isRandom() ? options.trials : 1, "rule " + rule->name());
   const PreparedRule prepared(rule, options.degree);
   const SceneLink sceneLink = buildSceneLink(description);
   const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
@@ -120,27 +155,8 @@ nlohmann::json linkReport(const LinkDescription& description,
       {"rays_cast", integral.raysCast},
   };
   // Near-singular links and form factors outside [0, 1] are flagged, never printed as fine.
-  nlohmann::json warnings = nlohmann::json::array();
-  const double nearness = nearnessRatio(description.receiver, description.source);
-  if (nearness < kNearSingularRatio) {
-    warnings.push_back("near-singular link: the patches are " + std::to_string(nearness) +
-                       " of the smaller patch's shorter side apart (below " +
-                       std::to_string(kNearSingularRatio) +
-                       "); product rules converge slowly here and random rules' standard "
-                       "errors understate their error");
-  }
-  if (integral.formFactor > 1.0 + 1e-9 || integral.formFactor < -1e-9) {
-    warnings.push_back("form factor " + std::to_string(integral.formFactor) +
-                       " outside [0, 1]: the rule does not resolve this link");
-  }
-  if (!warnings.empty()) {
-    out["warnings"] = warnings;
-    if (log != nullptr) {
-      for (const auto& warning : warnings) {
-        *log << "radquad: warning: " << warning.get<std::string>() << "\n";
-      }
-    }
-  }
+  nlohmann::json warnings = linkWarnings(description, integral.formFactor, "the rule");
+  addWarnings(out, warnings, log);
   if (options.trials > 1) {
     if (prepared.rule().isRandom()) {
       out.update(trialStatistics(prepared, sceneLink.link, options));
@@ -156,7 +172,8 @@ nlohmann::json linkReport(const LinkDescription& description,
 }
 
 nlohmann::json referenceReport(const LinkDescription& description,
-                               const ReferenceReportOptions& options, const std::string& link) {
+                               const ReferenceReportOptions& options, const std::string& link,
+                               std::ostream* log) {
   const SceneLink sceneLink = buildSceneLink(description);
   ReferenceOptions referenceOptions;
   referenceOptions.replicates = options.replicates;
@@ -190,6 +207,22 @@ nlohmann::json referenceReport(const LinkDescription& description,
                                                ? difference / estimate.formFactorStandardError
                                                : 0.0}};
   }
+  // The replicates' spread estimates the error only where the kernel's variance is bounded:
+  // on a near-singular link it is not, and the standard error is flagged as unreliable.
+  nlohmann::json warnings =
+      linkWarnings(description, estimate.integral.formFactor, "the reference");
+  const bool nearSingular = nearnessRatio(description.receiver, description.source) <
+                            kNearSingularRatio;
+  out["standard_error"]["reliable"] = !nearSingular;
+  if (options.gold) {
+    const double inErrors = out["reference_minus_gold"]["form_factor_in_standard_errors"];
+    if (std::abs(inErrors) > 5.0) {
+      warnings.push_back("the reference is " + std::to_string(inErrors) +
+                         " standard errors from the gold: its standard error understates its "
+                         "error on this link");
+    }
+  }
+  addWarnings(out, warnings, log);
   return out;
 }
 

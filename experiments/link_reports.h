@@ -41,9 +41,14 @@ struct ReferenceReportOptions {
 };
 
 // `radquad reference`'s object (`link` is what it names the link): the paper's reference
-// with its standard error, and with options.gold the gold and reference_minus_gold.
+// with its standard error (`standard_error.reliable` false on a near-singular link, where
+// the kernel's variance is unbounded), and with options.gold the gold and
+// reference_minus_gold; `warnings` (near-singular link, form factor outside [0, 1], the
+// reference more than 5 standard errors from the gold) when there are any, also written to
+// `log` when given.
 nlohmann::json referenceReport(const LinkDescription& description,
-                               const ReferenceReportOptions& options, const std::string& link);
+                               const ReferenceReportOptions& options, const std::string& link,
+                               std::ostream* log = nullptr);
 
 // A gold reference as `reference --gold` reports it.
 nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options);

@@ -1,5 +1,7 @@
 // radquad: quadrature of irradiance couplings in Galerkin radiosity.
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -20,6 +22,28 @@ int main(int argc, char** argv) {
   radquad::addTraceCommand(app);
   radquad::addBaselineCommand(app);
   radquad::addCheckCommand(app);
+  // Checks every command's options share, before any command runs: a value option given an
+  // empty value (`--out ""`, `--render ""`) is refused rather than read as absent, and a
+  // number option (FLOAT) refuses inf and nan, which CLI11 would accept and range checks let
+  // through (nan compares false).
+  const CLI::Validator nonEmpty(
+      [](std::string& value) { return value.empty() ? std::string("an empty value") : std::string(); },
+      "", "NonEmpty");
+  const CLI::Validator finite(
+      [](std::string& value) {
+        char* end = nullptr;
+        const double number = std::strtod(value.c_str(), &end);
+        if (end != value.c_str() && !std::isfinite(number)) return "not a finite number: " + value;
+        return std::string();
+      },
+      "", "Finite");
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options()) {
+      if (option->get_type_size() == 0) continue;  // a flag
+      option->check(nonEmpty);
+      if (option->get_type_name().find("FLOAT") != std::string::npos) option->check(finite);
+    }
+  }
   // An unknown word where the command belongs is named (CLI11 would only say that a command
   // is required).
   if (argc > 1 && argv[1][0] != '-') {

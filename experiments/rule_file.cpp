@@ -1,5 +1,6 @@
 #include "experiments/rule_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -194,6 +195,15 @@ std::shared_ptr<const Rule> findAnyRule(std::string_view name) {
     return findRule(name);
   } catch (const InputError& error) {
     throw InputError(std::string(error.what()) + ", File:PATH");
+  }
+}
+
+void checkSampleBudget(const Rule& rule, int trials, const std::string& where) {
+  const double total = double(rule.sampleCount()) * double(std::max(trials, 1));
+  if (total > kMaxSamplesPerLink) {
+    throw InputError(where + ": " + std::to_string(rule.sampleCount()) + " samples x " +
+                     std::to_string(trials) + " trials exceed the budget of 1e10 kernel "
+                     "evaluations per link");
   }
 }
 

@@ -36,6 +36,14 @@ std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std
 // `File:PATH` loads the file; any other name goes to the registry (quadrature/registry.h).
 std::shared_ptr<const Rule> findAnyRule(std::string_view name);
 
+// At most this many kernel evaluations per link for one rule over all its trials (a random
+// rule's samples times the trials; 1e10 is minutes of one core).
+inline constexpr double kMaxSamplesPerLink = 1e10;
+
+// InputError naming `where`, the rule's samples and the trials when samples x trials exceeds
+// kMaxSamplesPerLink.
+void checkSampleBudget(const Rule& rule, int trials, const std::string& where);
+
 // The registered rules as `radquad rules --json` lists them: {name, samples, degree (null for
 // random rules), family, citation}.
 nlohmann::json registeredRulesJson();

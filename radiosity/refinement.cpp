@@ -157,7 +157,18 @@ bool Solver::refinementPass() {
     if (examined(links_[k])) pending.push_back(int(k));
   }
   bool refined = false;
+  ProgressThrottle throttle;
+  int wave = 0;
+  std::size_t splits = 0;
+  const auto report = [&] {
+    if (!options_.refinementProgress) return;
+    if (const auto now = throttle.due()) {
+      options_.refinementProgress(
+          RefinementProgress{wave, splits, hierarchy_->size(), links_.size(), *now});
+    }
+  };
   while (!pending.empty()) {
+    ++wave;
     if (memoryExceeded("refinement")) break;
     // Which links split, and which of their elements (a function of each link alone, so the
     // choices are made in parallel and applied in order).
@@ -180,6 +191,12 @@ bool Solver::refinementPass() {
                            "--bf-eps or --min-area)";
         break;
       }
+      // A wave can create millions of elements and links: the memory budget is checked, and
+      // progress reported, within it too (before the next split, so every split is whole).
+      if (splits % 4096 == 4095) {
+        report();
+        if (memoryExceeded("refinement")) break;
+      }
       const int index = pending[k];
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
@@ -193,6 +210,7 @@ bool Solver::refinementPass() {
       const std::vector<int> candidates = std::move(parent.candidates);
       parent.candidates.clear();
       ++statistics_.refinedLinks;
+      ++splits;
       refined = true;
       const bool splitReceiver = choices[k] == 0;
       const int first = hierarchy_->subdivide(splitReceiver ? receiver : source);
@@ -212,6 +230,7 @@ bool Solver::refinementPass() {
       }
     }
     classifyLinks(created);
+    report();
     pending = std::move(created);
     if (!budgetExceeded_.empty()) break;
   }

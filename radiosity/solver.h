@@ -90,6 +90,16 @@ struct SolverOptions {
   // Called during the initial linking (quadratic in the patches), at most about once a
   // second once it has run a second: patches linked so far of all, links so far; may be empty.
   std::function<void(const struct LinkingProgress&)> linkingProgress;
+  // Called during a refinement pass, at most about once a second once the pass has run a
+  // second: its wave, the links split so far in it, elements and links; may be empty.
+  std::function<void(const struct RefinementProgress&)> refinementProgress;
+};
+
+struct RefinementProgress {
+  int wave = 0;               // breadth-first waves of splits in this pass, from 1
+  std::size_t splits = 0;     // links split in this pass so far
+  std::size_t elements = 0, links = 0;
+  double elapsedSeconds = 0.0;  // since the pass began
 };
 
 struct LinkingProgress {

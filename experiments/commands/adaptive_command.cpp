@@ -50,6 +50,7 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
     throw InputError("--sweep-scene " + command.runs.sweepScene +
                      ": not a built-in scene (cornell, slats)");
   }
+  checkPlotInterpreter(command.python, "--python");
   std::optional<tbb::global_control> threadLimit;
   if (command.threads > 0) {
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(command.threads));

@@ -54,6 +54,7 @@ void runFigures(const FiguresOptions& options) {
     configPaths.push_back(root / "experiments/configs" / (std::string(figure) + suffix + ".json"));
     configs.push_back(readStudyConfigWith(configPaths.back(), overrides));
   }
+  checkPlotInterpreter(options.python, "--python");
   createOutputDirectory(results);
   createOutputDirectory(plots);
   for (const char* name : {"fig1.json", "fig2.json", "fig1-scene.json", "fig2-scene.json",

@@ -55,7 +55,7 @@ void runReference(ReferenceCommandOptions options) {
   report.replicates = options.replicates;
   report.gold = options.gold;
   report.goldOptions = goldOptions;
-  std::cout << referenceReport(description, report, options.linkPath).dump(2) << "\n";
+  std::cout << referenceReport(description, report, options.linkPath, &std::cerr).dump(2) << "\n";
 }
 
 }  // namespace

@@ -123,6 +123,13 @@ void runSolve(const SolveCommandOptions& command) {
                    progress.patchesDone, progress.patches, progress.links, progress.classified,
                    progress.elapsedSeconds);
     };
+    options.refinementProgress = [](const RefinementProgress& progress) {
+      std::fprintf(stderr,
+                   "radquad solve: refinement: wave %d, %zu links split, %zu elements, %zu "
+                   "links, %.1f s\n",
+                   progress.wave, progress.splits, progress.elements, progress.links,
+                   progress.elapsedSeconds);
+    };
     options.progress = [](const SolveProgress& progress) {
       if (progress.elapsedSeconds < 1.0) return;
       std::fprintf(stderr,

@@ -31,9 +31,6 @@ void runTraceCommand(const TraceCommandOptions& command) {
   TraceOptions options;
   options.samples = parseDecimalOption(command.samples, "--samples", 1, kMaxTraceSamples);
   options.seed = parseDecimalOption(command.seed, "--seed", 0, ~std::uint64_t(0));
-  if (command.threads < 0) {
-    throw InputError("--threads " + std::to_string(command.threads) + ": must be >= 0 (0: all cores)");
-  }
   options.threads = command.threads;
   if (!command.out.empty()) checkOutputPath(command.out, "--out", {command.scene});
   const Scene scene = loadScene(command.scene);
@@ -72,6 +69,7 @@ void addTraceCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed, a decimal 0..2^64-1")->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   command->add_flag("--quiet", options->quiet, "No progress on stderr");
   command->add_option("--out", options->out, "Write the JSON to this file instead of stdout");

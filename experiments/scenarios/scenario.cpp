@@ -52,6 +52,9 @@ std::vector<Enum> parseNames(const nlohmann::json& value, const std::string& whe
   return out;
 }
 
+constexpr double kMaxGeneratedSide = 1e9;
+constexpr double kMaxDistanceFactor = 1e4;
+
 double positive(const nlohmann::json& object, const char* key, const std::string& where,
                 double fallback) {
   if (!object.contains(key)) return fallback;
@@ -268,6 +271,14 @@ GeometryRanges parseGeometryRanges(const nlohmann::json& value, const std::strin
   ranges.maxDistanceFactor =
       positive(value, "max_distance_factor", where, ranges.maxDistanceFactor);
   if (ranges.minSide > ranges.maxSide) throw InputError(where + ": min_side exceeds max_side");
+  // Generated corners stay far inside the coordinate limit of link geometry (1e15).
+  if (ranges.maxSide > kMaxGeneratedSide) {
+    throw InputError(where + ": max_side must be at most " + std::to_string(kMaxGeneratedSide));
+  }
+  if (ranges.maxDistanceFactor > kMaxDistanceFactor) {
+    throw InputError(where + ": max_distance_factor must be at most " +
+                     std::to_string(kMaxDistanceFactor));
+  }
   if (ranges.minDistanceFactor > ranges.maxDistanceFactor) {
     throw InputError(where + ": min_distance_factor exceeds max_distance_factor");
   }

@@ -65,6 +65,16 @@ std::string shellQuoted(const std::string& text) {
   return out + "'";
 }
 
+void checkPlotInterpreter(const std::string& python, const std::string& option) {
+  const std::string command =
+      shellQuoted(python) + " -c 'import matplotlib' >/dev/null 2>&1 </dev/null";
+  if (std::system(command.c_str()) != 0) {
+    throw InputError(option + " " + python +
+                     ": cannot run it, or it has no matplotlib (the figures are plotted with it; "
+                     "Debian: python3-matplotlib for /usr/bin/python3)");
+  }
+}
+
 void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet) {

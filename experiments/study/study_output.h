@@ -27,6 +27,10 @@ std::string gitCommit();
 // `text` as one single-quoted word for the POSIX shell.
 std::string shellQuoted(const std::string& text);
 
+// Checked before any work: `python` (given as `option`) runs and imports matplotlib.
+// InputError naming the option otherwise.
+void checkPlotInterpreter(const std::string& python, const std::string& option);
+
 // Runs `python plots/SCRIPT --results RESULTS --plots PLOTS` from the source tree, echoing
 // the command on stderr as "radquad COMMAND: ..." unless quiet. InputError when it fails.
 void runPlotScript(const std::string& python, const std::string& script,

@@ -284,19 +284,21 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
   Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), options.gold};
   scorers.keepDetails = options.keepDetails;
   StudyRun run;
+  // The rules first (a rule file, the sample budget), before the scene solves.
+  for (const std::string& name : config.rules) {
+    scorers.rules.emplace_back(findAnyRule(name), degree);
+    const Rule& rule = scorers.rules.back().rule();
+    const int trials = rule.isRandom() ? config.trials : 1;
+    checkSampleBudget(rule, trials, "rule " + rule.name());
+    scorers.trials.push_back(trials);
+    run.rules.push_back({rule.name(), rule.sampleCount(), rule.isRandom(), trials});
+  }
   std::unique_ptr<SceneLinkPool> pool;
   if (config.sceneLinks) {
     pool = std::make_unique<SceneLinkPool>(*config.sceneLinks, config.seed);
     scorers.pool = pool.get();
     run.sceneLinks = pool->totalLinks();
     run.sceneOccludedLinks = pool->occludedLinks();
-  }
-  for (const std::string& name : config.rules) {
-    scorers.rules.emplace_back(findAnyRule(name), degree);
-    const Rule& rule = scorers.rules.back().rule();
-    const int trials = rule.isRandom() ? config.trials : 1;
-    scorers.trials.push_back(trials);
-    run.rules.push_back({rule.name(), rule.sampleCount(), rule.isRandom(), trials});
   }
   run.referenceName = scorers.reference.name();
   run.referenceSamples = scorers.reference.samples();

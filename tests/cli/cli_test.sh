@@ -83,6 +83,38 @@ assert any("near-singular" in w for w in out["warnings"]), out.get("warnings")
 assert any("outside [0, 1]" in w for w in out["warnings"]), out.get("warnings")
 PY
 check near_singular_warnings $?
+# The paper's reference on it: its standard error is flagged as unreliable (the kernel's
+# variance is unbounded there), with the warning on stderr; on a link far from singular it
+# is reliable and there is no warning.
+"$radquad" reference "$fixtures/near_singular.json" >"$scratch/near_reference.json" 2>"$scratch/err"
+check near_singular_reference_status $?
+grep -q "near-singular link" "$scratch/err"; check near_singular_reference_stderr $?
+"$radquad" reference "$fixtures/good_link.json" >"$scratch/good_reference.json" 2>/dev/null
+"$python" - "$scratch/near_reference.json" "$scratch/good_reference.json" <<'PY'
+import json, sys
+near, good = (json.load(open(path)) for path in sys.argv[1:3])
+assert near["standard_error"]["reliable"] is False
+assert any("near-singular" in w for w in near["warnings"]), near.get("warnings")
+assert good["standard_error"]["reliable"] is True and "warnings" not in good
+PY
+check near_singular_reference_flagged $?
+
+# Options: an empty value is refused (not read as absent), numbers must be finite, outputs
+# must be creatable (a virtual file system is refused before any work) and never replace a
+# device or a pipe; the plotting interpreter is checked before any work.
+expect_error empty_out "--out: an empty value" study "$fixtures/good_link.json" --out ""
+expect_error empty_render "--render: an empty value" solve cornell --render ""
+expect_error infinite_tolerance "--tolerance: not a finite number: inf" solve cornell --tolerance inf
+expect_error nan_gold_tolerance "--gold-tolerance: not a finite number: nan" reference "$fixtures/good_link.json" --gold --gold-tolerance nan
+expect_error out_in_sysfs "--out /sys/radquad.json: cannot write in /sys" trace cornell --samples 16 --out /sys/radquad.json
+mkfifo "$scratch/fifo"
+expect_error out_is_a_pipe "not a regular file (a device, a pipe or a socket)" trace cornell --samples 16 --out "$scratch/fifo"
+[ -p "$scratch/fifo" ]; check pipe_kept $?
+expect_error trace_threads "--threads: Value 99999 not in range" trace cornell --threads 99999
+expect_error figures_python "--python /no/such/python: cannot run it" figures --quick --quiet --python /no/such/python --results "$scratch/fig_results" --plots "$scratch/fig_plots"
+[ ! -e "$scratch/fig_results" ]; check figures_python_wrote_nothing $?
+expect_error sample_budget "exceed the budget of 1e10 kernel evaluations per link" link "$fixtures/good_link.json" --rule MonteCarlo:10000000 --trials 100000
+expect_error input_is_a_folder "is a folder" link "$fixtures" --rule FullGauss
 
 # A good run: the documented keys, a 9x9 coupling at degree 2, half the rays blocked (the
 # fixture's blocker covers half of the mid plane; Gauss:4x4x3x3 is symmetric about it).

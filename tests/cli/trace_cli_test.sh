@@ -22,7 +22,7 @@ expect_status 2 "samples not a number" "--samples abc: expected a decimal intege
 expect_status 2 "negative seed" "--seed -1: expected a decimal integer" trace "$work/squares.json" --seed=-1
 expect_status 2 "seed above 2^64-1" "--seed 18446744073709551616: out of range" trace "$work/squares.json" --seed 18446744073709551616
 expect_status 2 "seed with an exponent" "--seed 1e3" trace "$work/squares.json" --seed 1e3
-expect_status 2 "negative threads" "--threads -1" trace "$work/squares.json" --threads=-1
+expect_status 2 "negative threads" "--threads: Value -1 not in range" trace "$work/squares.json" --threads=-1
 expect_status 2 "unknown scene" "not a built-in scene" trace no_such_scene
 expect_status 2 "unwritable --out" "/proc/radquad-trace.json" trace "$work/squares.json" --samples 4 --out /proc/radquad-trace.json
 
