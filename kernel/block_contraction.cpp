@@ -5,10 +5,7 @@
 #include <cstring>
 
 #include "kernel/legendre_basis.h"
-
-// The 64-byte vectors below never cross a non-inlined boundary with external linkage, so
-// GCC's note that their ABI differs without AVX-512 (a -march=native OFF build) is moot.
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "kernel/simd_lanes.h"
 
 namespace radquad::detail {
 namespace {
@@ -40,7 +37,7 @@ void legendreAcrossPoints(int degree, const double* __restrict x, std::size_t co
 }
 
 // Eight-lane vectors (GCC/Clang vector extension), so the accumulators are registers.
-typedef double Lanes __attribute__((vector_size(64)));
+using Lanes = simd::Doubles8;
 
 inline Lanes load(const double* from) {
   Lanes lanes;

@@ -74,8 +74,8 @@ void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
   // Embree sets tfar to -inf in the lanes it finds blocked. Eight rays at a time: the far
   // ends widened to double select the kernel values, and the comparison masks (-1 per blocked
   // ray) are summed; the last count % 8 rays one by one (the kernel has only `count` values).
-  using Floats8 = float __attribute__((vector_size(32)));
-  using Counts8 = std::int64_t __attribute__((vector_size(64)));
+  using Floats8 = simd::Floats8;
+  using Counts8 = simd::Int64s8;
   Counts8 negativeBlocked = {};
   double* __restrict kernel = kernel_.data();
   const std::size_t grouped = count - count % 8;
@@ -136,7 +136,7 @@ struct StagedRays {
   float* directionZ;
 };
 
-using Floats8 = float __attribute__((vector_size(32)));
+using simd::Floats8;
 
 inline Lanes8 load8(const double* p) {
   Lanes8 v;

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "kernel/legendre_basis.h"
+#include "kernel/simd_lanes.h"
 
 namespace radquad::detail {
 
@@ -20,8 +21,8 @@ namespace radquad::detail {
 // where available and to pairs or quadruples of narrower ones elsewhere.
 // Scalar terms are fused explicitly: left to contraction, the compiler may group scalar
 // products into vectors and round them before adding. Vector terms are always contracted.
-using Lanes8 = double __attribute__((vector_size(64)));
-constexpr int kLanes = 8;
+using Lanes8 = simd::Doubles8;
+constexpr int kLanes = simd::kLanes;
 
 inline double multiplyAdd(double a, double b, double sum) {
 #ifdef __FMA__

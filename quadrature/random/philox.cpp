@@ -6,6 +6,8 @@
 #include <immintrin.h>
 #endif
 
+#include "kernel/simd_lanes.h"
+
 namespace radquad {
 namespace {
 
@@ -47,19 +49,15 @@ PhiloxCounter philox4x32(PhiloxCounter counter, PhiloxKey key) {
   return counter;
 }
 
-// The 64-byte vectors below never cross a non-inlined boundary with external linkage, so
-// GCC's note that their ABI differs without AVX-512 (a -march=native OFF build) is moot.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 namespace {
 
 // Philox blocks side by side, one block per 64-bit lane of an 8-lane vector (GCC/Clang vector
 // extension). Only the low 32 bits of a lane are a word of the block: the round reads the
 // multiplicands' low halves only, so the high halves may carry junk and are never masked
 // inside the rounds.
-typedef std::uint64_t BlockLanes __attribute__((vector_size(64)));
-typedef double DoubleLanes __attribute__((vector_size(64)));
-constexpr int kBlockLanes = 8;
+using BlockLanes = simd::UInt64s8;
+using DoubleLanes = simd::Doubles8;
+constexpr int kBlockLanes = simd::kLanes;
 
 // lo32(a) * m (m < 2^32) in every lane: Philox's 32 x 32 -> 64-bit product. AVX-512 has it as
 // one instruction (vpmuludq), which compilers do not find from the portable form; the
