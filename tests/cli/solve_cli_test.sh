@@ -36,6 +36,15 @@ if ! cmp -s "$work/lamp.json" "$work/lamp_copy.json"; then
 fi
 expect_status 2 "render into a missing folder" "does not exist" solve cornell --render "$work/no/such/folder.png"
 
+# Two patches facing the same way that overlap in one plane are refused, naming both (the
+# solver would light both); back to back, or side by side, they are legal.
+lamp='{"name": "lamp", "origin": [0,0,2], "edge_u": [0,1,0], "edge_v": [1,0,0], "reflectance": [0,0,0], "emission": [1,1,1]}'
+floor='{"name": "floor", "origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0], "reflectance": [0.5,0.5,0.5]}'
+printf '{"patches": [%s, %s, {"name": "floor copy", "origin": [0.5,0.5,0], "edge_u": [1,0,0], "edge_v": [0,1,0], "reflectance": [0.5,0.5,0.5]}]}' "$lamp" "$floor" >"$work/overlap.json"
+printf '{"patches": [%s, %s, {"name": "underside", "origin": [0,1,0], "edge_u": [1,0,0], "edge_v": [0,-1,0], "reflectance": [0.5,0.5,0.5]}, {"name": "beside", "origin": [1,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0], "reflectance": [0.5,0.5,0.5]}]}' "$lamp" "$floor" >"$work/legal_neighbours.json"
+expect_status 2 "overlapping patches facing the same way" "patches\[1\] (floor) and patches\[2\] (floor copy) face the same way and overlap" solve "$work/overlap.json"
+expect_status 0 "back to back and side by side" "" solve "$work/legal_neighbours.json" --degree 0
+
 expect_status 0 "built-in scene with a render" "" solve cornell --degree 0 --render "$work/cornell.png"
 for field in kernel_evaluations links elements iterations elapsed_seconds patches mean_radiosity; do
   if ! grep -q "\"$field\"" "$work/out"; then
