@@ -26,6 +26,19 @@ void refuseSpecialFile(const std::filesystem::path& path, const std::string& nam
   }
 }
 
+// Creates the temporary file a result for `path` is written to (PATH.tmp.XXXXXX in its
+// folder); its descriptor, or -1 with errno set.
+int createTemporaryBeside(const std::filesystem::path& path, std::string* name) {
+  const std::filesystem::path directory =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::string pattern = (directory / (path.filename().string() + ".tmp.XXXXXX")).string();
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  const int descriptor = mkstemp(buffer.data());
+  if (descriptor >= 0) *name = buffer.data();
+  return descriptor;
+}
+
 }  // namespace
 
 void checkOutputPath(const std::filesystem::path& path, const std::string& option,
@@ -51,30 +64,23 @@ void checkOutputPath(const std::filesystem::path& path, const std::string& optio
   refuseSpecialFile(path, named);
   // Permissions do not tell everything (a read-only or virtual file system such as /sys or
   // /proc): the temporary file the result will be written to is created and removed now.
-  std::string pattern = (directory / (path.filename().string() + ".tmp.XXXXXX")).string();
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  const int descriptor = mkstemp(name.data());
+  std::string temporary;
+  const int descriptor = createTemporaryBeside(path, &temporary);
   if (descriptor < 0) {
     throw InputError(named + ": cannot write in " + directory.string() + " (" +
                      std::strerror(errno) + ")");
   }
   ::close(descriptor);
-  ::unlink(name.data());
+  ::unlink(temporary.c_str());
 }
 
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
   refuseSpecialFile(path, path.string());
-  const std::filesystem::path directory =
-      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::string pattern = (directory / (path.filename().string() + ".tmp.XXXXXX")).string();
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  const int descriptor = mkstemp(name.data());
+  std::string temporary;
+  const int descriptor = createTemporaryBeside(path, &temporary);
   if (descriptor < 0) {
     throw InputError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
   }
-  const std::string temporary(name.data());
   auto fail = [&](const char* what) {
     const std::string reason = std::strerror(errno);
     ::close(descriptor);

@@ -94,11 +94,10 @@ nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options)
 
 namespace {
 
-// A link's warnings (near-singular, form factor outside [0, 1]); `what` names the estimate.
-nlohmann::json linkWarnings(const LinkDescription& description, double formFactor,
-                            const std::string& what) {
+// A link's warnings (near-singular: `nearness` is nearnessRatio of its patches; form factor
+// outside [0, 1]); `what` names the estimate.
+nlohmann::json linkWarnings(double nearness, double formFactor, const std::string& what) {
   nlohmann::json warnings = nlohmann::json::array();
-  const double nearness = nearnessRatio(description.receiver, description.source);
   if (nearness < kNearSingularRatio) {
     warnings.push_back("near-singular link: the patches are " + std::to_string(nearness) +
                        " of the smaller patch's shorter side apart (below " +
@@ -155,7 +154,8 @@ nlohmann::json linkReport(const LinkDescription& description,
       {"rays_cast", integral.raysCast},
   };
   // Near-singular links and form factors outside [0, 1] are flagged, never printed as fine.
-  nlohmann::json warnings = linkWarnings(description, integral.formFactor, "the rule");
+  nlohmann::json warnings = linkWarnings(
+      nearnessRatio(description.receiver, description.source), integral.formFactor, "the rule");
   addWarnings(out, warnings, log);
   if (options.trials > 1) {
     if (prepared.rule().isRandom()) {
@@ -209,11 +209,9 @@ nlohmann::json referenceReport(const LinkDescription& description,
   }
   // The replicates' spread estimates the error only where the kernel's variance is bounded:
   // on a near-singular link it is not, and the standard error is flagged as unreliable.
-  nlohmann::json warnings =
-      linkWarnings(description, estimate.integral.formFactor, "the reference");
-  const bool nearSingular = nearnessRatio(description.receiver, description.source) <
-                            kNearSingularRatio;
-  out["standard_error"]["reliable"] = !nearSingular;
+  const double nearness = nearnessRatio(description.receiver, description.source);
+  nlohmann::json warnings = linkWarnings(nearness, estimate.integral.formFactor, "the reference");
+  out["standard_error"]["reliable"] = nearness >= kNearSingularRatio;
   if (options.gold) {
     const double inErrors = out["reference_minus_gold"]["form_factor_in_standard_errors"];
     if (std::abs(inErrors) > 5.0) {
