@@ -21,7 +21,8 @@ nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
   Eigen::MatrixXd sum, squares;
   double formFactorSum = 0.0, formFactorSquares = 0.0;
   for (int trial = 0; trial < options.trials; ++trial) {
-    prepared.integrate(link, options.seed + std::uint64_t(trial), accumulator, integral);
+    prepared.integrate(link, options.seed + std::uint64_t(trial), accumulator, integral,
+                       std::size_t(trial));
     if (trial == 0) {
       sum = Eigen::MatrixXd::Zero(integral.coupling.rows(), integral.coupling.cols());
       squares = sum;
@@ -133,6 +134,7 @@ nlohmann::json linkReport(const LinkDescription& description,
                      std::to_string(options.trials) + " trials: the last seed would pass 2^64 - 1");
   }
   checkSampleBudget(*rule, rule->isRandom() ? options.trials : 1, "rule " + rule->name());
+  checkDrawCount(*rule, options.trials, "trials");
   const PreparedRule prepared(rule, options.degree);
   const SceneLink sceneLink = buildSceneLink(description);
   const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);

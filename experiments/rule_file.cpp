@@ -87,6 +87,26 @@ nlohmann::json npzMatrix(const NpyArray& array, std::size_t columns, const std::
   return out;
 }
 
+// An array of shape (T, N, columns) (columns 0: (T, N)) as T JSON matrices, one per draw.
+std::vector<nlohmann::json> npzDraws(const NpyArray& array, std::size_t columns,
+                                     const std::string& where) {
+  const std::size_t axes = columns == 0 ? 2 : 3;
+  if (array.isString || array.shape.size() != axes || (columns != 0 && array.shape[2] != columns)) {
+    throw InputError(where + ": draws need shape " +
+                     (columns == 0 ? std::string("(T, N)") : "(T, N, " + std::to_string(columns) + ")"));
+  }
+  std::vector<nlohmann::json> out;
+  const std::size_t rows = array.shape[1], width = std::max<std::size_t>(columns, 1);
+  for (std::size_t t = 0; t < array.shape[0]; ++t) {
+    NpyArray slice;
+    slice.shape = columns == 0 ? std::vector<std::size_t>{rows} : std::vector<std::size_t>{rows, columns};
+    const auto begin = array.numbers.begin() + std::ptrdiff_t(t * rows * width);
+    slice.numbers.assign(begin, begin + std::ptrdiff_t(rows * width));
+    out.push_back(npzMatrix(slice, columns, where));
+  }
+  return out;
+}
+
 std::string npzString(const NpyArray& array, const std::string& where) {
   if (!array.isString || array.size() != 1) throw InputError(where + ": expected one string");
   return array.strings.front();
@@ -99,7 +119,44 @@ nlohmann::json npzRuleJson(const std::map<std::string, NpyArray>& arrays,
                            const std::filesystem::path& path) {
   const std::string where = path.string();
   nlohmann::json rule = {{"name", path.stem().string()}};
+  // Draws of a random rule: points (T, N, 4) or receiver_points (T, N, 2) and their kin.
+  const auto points = arrays.find("points");
+  const auto receiverPoints = arrays.find("receiver_points");
+  const bool stacked = (points != arrays.end() && points->second.shape.size() == 3) ||
+                       (receiverPoints != arrays.end() && receiverPoints->second.shape.size() == 3);
+  if (stacked) {
+    nlohmann::json draws = nlohmann::json::array();
+    auto member = [&](const std::string& name, std::size_t columns, auto&& place) {
+      const auto found = arrays.find(name);
+      if (found == arrays.end()) return;
+      const auto matrices = npzDraws(found->second, columns, where + ": " + name);
+      if (!draws.empty() && draws.size() != matrices.size()) {
+        throw InputError(where + ": " + name + " holds " + std::to_string(matrices.size()) +
+                         " draws, the other arrays " + std::to_string(draws.size()));
+      }
+      if (draws.empty()) draws = nlohmann::json::array();
+      for (std::size_t t = 0; t < matrices.size(); ++t) {
+        if (draws.size() <= t) draws.push_back(nlohmann::json::object());
+        place(draws[t], matrices[t]);
+      }
+    };
+    member("points", 4, [](nlohmann::json& d, const nlohmann::json& m) { d["points"] = m; });
+    member("weights", 0, [](nlohmann::json& d, const nlohmann::json& m) { d["weights"] = m; });
+    for (const std::string side : {"receiver", "source"}) {
+      member(side + "_points", 2,
+             [&](nlohmann::json& d, const nlohmann::json& m) { d[side]["points"] = m; });
+      member(side + "_weights", 0,
+             [&](nlohmann::json& d, const nlohmann::json& m) { d[side]["weights"] = m; });
+    }
+    rule["draws"] = std::move(draws);
+  }
   for (const auto& [name, array] : arrays) {
+    if (stacked && name != "name" && name != "citation" && name != "degree") {
+      if (name == "points" || name == "weights" || name == "receiver_points" ||
+          name == "receiver_weights" || name == "source_points" || name == "source_weights") {
+        continue;
+      }
+    }
     const std::string member = where + ": " + name;
     if (name == "name" || name == "citation") {
       rule[name] = npzString(array, member);
@@ -128,8 +185,62 @@ nlohmann::json npzRuleJson(const std::map<std::string, NpyArray>& arrays,
 
 }  // namespace
 
+namespace {
+
+// One draw's points: {"points", "weights"} or {"receiver", "source"} (keys of `value` that
+// belong to the draw; the caller has checked the others).
+RuleSamples parseDraw(const nlohmann::json& value, const std::string& where) {
+  const bool product = value.contains("receiver") || value.contains("source");
+  const bool scattered = value.contains("points") || value.contains("weights");
+  if (product == scattered) {
+    throw InputError(where + ": give either points and weights, or receiver and source");
+  }
+  RuleSamples draw;
+  draw.isProduct = product;
+  if (product) {
+    if (!value.contains("receiver") || !value.contains("source")) {
+      throw InputError(where + ": a product rule needs both receiver and source");
+    }
+    draw.receiver = patchSet(value["receiver"], where + ": receiver");
+    draw.source = patchSet(value["source"], where + ": source");
+    return draw;
+  }
+  if (!value.contains("points") || !value.contains("weights")) {
+    throw InputError(where + ": a rule of 4D points needs both points and weights");
+  }
+  const auto columns = pointColumns(value["points"], 4, where + ": points");
+  draw.points.s = columns[0];
+  draw.points.t = columns[1];
+  draw.points.u = columns[2];
+  draw.points.v = columns[3];
+  draw.points.weight = numbers(value["weights"], where + ": weights");
+  if (draw.points.weight.size() != draw.points.s.size()) {
+    throw InputError(where + ": " + std::to_string(draw.points.s.size()) + " points but " +
+                     std::to_string(draw.points.weight.size()) + " weights");
+  }
+  return draw;
+}
+
+nlohmann::json drawJson(const RuleSamples& samples) {
+  nlohmann::json out = nlohmann::json::object();
+  if (samples.isProduct) {
+    out["receiver"] = patchSetJson(samples.receiver);
+    out["source"] = patchSetJson(samples.source);
+  } else {
+    nlohmann::json points = nlohmann::json::array();
+    const LinkSamples& p = samples.points;
+    for (std::size_t k = 0; k < p.size(); ++k) points.push_back({p.s[k], p.t[k], p.u[k], p.v[k]});
+    out["points"] = points;
+    out["weights"] = p.weight;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std::string& where) {
-  checkKeys(value, where, {"name", "degree", "citation", "points", "weights", "receiver", "source"},
+  checkKeys(value, where,
+            {"name", "degree", "citation", "points", "weights", "receiver", "source", "draws"},
             {"name"});
   DataRuleSpec spec;
   if (!value["name"].is_string()) throw InputError(where + ": name must be a string");
@@ -149,32 +260,26 @@ std::shared_ptr<const Rule> parseRuleJson(const nlohmann::json& value, const std
     if (!value["citation"].is_string()) throw InputError(where + ": citation must be a string");
     spec.citation = value["citation"].get<std::string>();
   }
-  const bool product = value.contains("receiver") || value.contains("source");
-  const bool scattered = value.contains("points") || value.contains("weights");
-  if (product == scattered) {
-    throw InputError(where + ": give either points and weights, or receiver and source");
-  }
-  spec.product = product;
-  if (product) {
-    if (!value.contains("receiver") || !value.contains("source")) {
-      throw InputError(where + ": a product rule needs both receiver and source");
+  if (value.contains("draws")) {
+    for (const char* key : {"points", "weights", "receiver", "source"}) {
+      if (value.contains(key)) {
+        throw InputError(where + ": give either draws or one set of points, not both (" +
+                         std::string(key) + ")");
+      }
     }
-    spec.receiver = patchSet(value["receiver"], where + ": receiver");
-    spec.source = patchSet(value["source"], where + ": source");
+    const nlohmann::json& draws = value["draws"];
+    if (!draws.is_array() || draws.empty()) {
+      throw InputError(where + ": draws must be a non-empty array of point sets");
+    }
+    spec.random = true;
+    for (std::size_t d = 0; d < draws.size(); ++d) {
+      const std::string at = where + ": draws[" + std::to_string(d) + "]";
+      if (!draws[d].is_object()) throw InputError(at + ": expected an object");
+      checkKeys(draws[d], at, {"points", "weights", "receiver", "source"}, {});
+      spec.draws.push_back(parseDraw(draws[d], at));
+    }
   } else {
-    if (!value.contains("points") || !value.contains("weights")) {
-      throw InputError(where + ": a rule of 4D points needs both points and weights");
-    }
-    const auto columns = pointColumns(value["points"], 4, where + ": points");
-    spec.points.s = columns[0];
-    spec.points.t = columns[1];
-    spec.points.u = columns[2];
-    spec.points.v = columns[3];
-    spec.points.weight = numbers(value["weights"], where + ": weights");
-    if (spec.points.weight.size() != spec.points.s.size()) {
-      throw InputError(where + ": " + std::to_string(spec.points.s.size()) + " points but " +
-                       std::to_string(spec.points.weight.size()) + " weights");
-    }
+    spec.draws.push_back(parseDraw(value, where));
   }
   return makeDataRule(std::move(spec), where);
 }
@@ -207,22 +312,29 @@ void checkSampleBudget(const Rule& rule, int trials, const std::string& where) {
   }
 }
 
-nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed) {
-  const RuleSamples samples = rule.samples(seed);
+nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed, int draws) {
   const auto degree = rule.degree();
   nlohmann::json out = {{"name", rule.name()},
                         {"degree", degree ? nlohmann::json(*degree) : nlohmann::json(nullptr)},
                         {"citation", rule.citation()}};
-  if (samples.isProduct) {
-    out["receiver"] = patchSetJson(samples.receiver);
-    out["source"] = patchSetJson(samples.source);
-  } else {
-    nlohmann::json points = nlohmann::json::array();
-    const LinkSamples& p = samples.points;
-    for (std::size_t k = 0; k < p.size(); ++k) points.push_back({p.s[k], p.t[k], p.u[k], p.v[k]});
-    out["points"] = points;
-    out["weights"] = p.weight;
+  if (rule.drawCount() > 0) {  // a listed rule is written whole
+    nlohmann::json list = nlohmann::json::array();
+    for (std::size_t d = 0; d < rule.drawCount(); ++d) list.push_back(drawJson(rule.listedDraw(d)));
+    out["draws"] = std::move(list);
+    return out;
   }
+  if (draws > 0 && rule.isRandom()) {
+    if (seed > ~std::uint64_t(0) - std::uint64_t(draws - 1)) {
+      throw InputError("seed " + std::to_string(seed) + " with " + std::to_string(draws) +
+                       " draws: the last seed would pass 2^64 - 1");
+    }
+    checkSampleBudget(rule, draws, "rule " + rule.name());
+    nlohmann::json list = nlohmann::json::array();
+    for (int d = 0; d < draws; ++d) list.push_back(drawJson(rule.samples(seed + std::uint64_t(d))));
+    out["draws"] = std::move(list);
+    return out;
+  }
+  out.update(drawJson(rule.samples(seed)));
   return out;
 }
 

@@ -9,14 +9,17 @@
 //    "receiver": {"points": [[u, v], ...], "weights": [...]},
 //    "source":   {"points": [[u, v], ...], "weights": [...]}}
 // with (s, t, u, v) = (receiver u, receiver v, source u, source v) on [0, 1]^4. "degree" and
-// "citation" may be left out. A file whose name ends in .npz is NumPy's archive
+// "citation" may be left out. A random rule is a list of draws, trial t using draw t:
+//   {"name": N, "citation": C, "draws": [{"points": ..., "weights": ...}, ...]}
+// (or draws of {"receiver", "source"}), every draw of the same form and size, no degree. A file whose name ends in .npz is NumPy's archive
 // (experiments/npz_input.h; numpy.savez or savez_compressed) with the same content as arrays:
 // points (N, 4) and weights (N,), or receiver_points (N, 2), receiver_weights, source_points,
 // source_weights; optional name and citation (strings; the name defaults to the file's
-// stem) and degree (an integer). Loading checks what quadrature/rules/data_rule.h lists (values
+// stem) and degree (an integer). Draws of a random rule stack on a first axis: points
+// (T, N, 4) and weights (T, N), or receiver_points (T, N, 2) and so on. Loading checks what quadrature/rules/data_rule.h lists (values
 // finite and in [0, 1], weights summing to 1, the declared degree) and names the file and the
-// failed check (InputError, exit status 2). Such rules are deterministic: the same points for
-// every seed.
+// failed check (InputError, exit status 2). A rule of one point set is deterministic: the same
+// points for every seed.
 #pragma once
 
 #include <filesystem>
@@ -48,7 +51,10 @@ void checkSampleBudget(const Rule& rule, int trials, const std::string& where);
 // random rules), family, citation}.
 nlohmann::json registeredRulesJson();
 
-// A rule's points of one draw (`seed`) in the file format; a product rule stays a product.
-nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed);
+// A rule in the file format; a product rule stays a product. A random rule's draw for `seed`,
+// or with `draws` > 0 its draws for seeds seed, seed + 1, ... (the seeds of `radquad link
+// --seed S --trials T`, so the file's trials reproduce the rule's); a rule of listed draws
+// whole.
+nlohmann::json ruleToJson(const Rule& rule, std::uint64_t seed, int draws = 0);
 
 }  // namespace radquad

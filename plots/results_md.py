@@ -169,11 +169,12 @@ def adaptive(data):
                          f"{entry['evaluation_ratio']:.2f}",
                          f"{entry['product_link_evaluation_ratio']:.2f} / {entry['composite_evaluation_ratio']:.2f}",
                          f"{100 * entry['relative_l2_difference']:.2f}%",
-                         f"{100 * worst['value']:+.2f}% ({worst['patch']}, {worst['channel']})",
-                         f"{entry['time_ratio']:.2f}"])
+                         f"{100 * worst['value']:+.2f}% ({worst['patch']}, {worst['channel']})"])
     out.append(table(["scene", "d", "rules", "evaluations", "savings", "product / composite links",
-                      "L2 difference", "worst patch",
-                      "wall-time ratio"], rows))
+                      "L2 difference", "worst patch"], rows))
+    out.append("\nTimes change from run to run and are not part of the committed results: "
+               "`radquad adaptive` writes them to results/adaptive.run.json (docs/performance.md "
+               "reads them).\n")
     return "\n".join(out)
 
 
@@ -186,9 +187,10 @@ def solver_accuracy(data):
             worst = degree["worst_relative_difference"]
             rows.append([scene["scene"], degree["degree"], degree["elements"],
                          f"{100 * degree['mean_absolute_relative_difference']:.2f}%",
-                         f"{100 * worst['value']:+.2f}% ({worst['patch']}, {worst['channel']})",
-                         f"{degree['cpu_seconds']:.1f}"])
-    out.append(table(["scene", "d", "elements", "mean abs. difference", "worst patch", "CPU s"], rows))
+                         f"{100 * worst['value']:+.2f}% ({worst['patch']}, {worst['channel']})"])
+    out.append(table(["scene", "d", "elements", "mean abs. difference", "worst patch"], rows))
+    out.append("\nCPU times and peak memory: results/solver_accuracy.run.json, beside the result "
+               "(not committed).\n")
     return "\n".join(out)
 
 

@@ -1,5 +1,7 @@
 #include "quadrature/adaptive_gauss.h"
+
 #include "kernel/input_error.h"
+#include "quadrature/random/seeds.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,11 +59,7 @@ GaussRuleChoice chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& 
 }
 
 std::uint64_t linkSeed(std::uint64_t baseSeed, std::uint32_t receiver, std::uint32_t source) {
-  std::uint64_t z = baseSeed ^ ((std::uint64_t(receiver) << 32) | source);
-  z += 0x9E3779B97F4A7C15ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
+  return deriveSeed(baseSeed, {receiver, source});
 }
 
 }  // namespace radquad

@@ -56,8 +56,8 @@ GaussRuleChoice chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& 
 
 // The seed of a link's own generator, a pure function of the link's identity (its receiver
 // and source element ids), so that the choice does not depend on the order links are
-// visited in or on the thread count. (A 64-bit mix: SplitMix64's finaliser, Steele, Lea and
-// Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014.)
+// visited in or on the thread count: deriveSeed(baseSeed, {receiver, source})
+// (quadrature/random/seeds.h).
 std::uint64_t linkSeed(std::uint64_t baseSeed, std::uint32_t receiver, std::uint32_t source);
 
 // The kernel evaluations of one product rule: Rs Rt Su Sv.

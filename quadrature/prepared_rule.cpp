@@ -4,14 +4,24 @@
 
 namespace radquad {
 
+PreparedRule::KeptDraw PreparedRule::keep(RuleSamples samples, int degree) {
+  KeptDraw kept;
+  kept.samples = std::move(samples);
+  if (kept.samples.isProduct) {
+    kept.receiverBasis = makeWeightedBasisTable(kept.samples.receiver, degree);
+    kept.sourceBasis = makeWeightedBasisTable(kept.samples.source, degree);
+  }
+  return kept;
+}
+
 PreparedRule::PreparedRule(std::shared_ptr<const Rule> rule, int degree)
     : rule_(std::move(rule)), degree_(degree) {
   validateBasisDegree(degree_);
   if (!rule_->isRandom()) {
-    fixedSamples_ = rule_->samples(0);
-    if (fixedSamples_.isProduct) {
-      receiverBasis_ = makeWeightedBasisTable(fixedSamples_.receiver, degree_);
-      sourceBasis_ = makeWeightedBasisTable(fixedSamples_.source, degree_);
+    kept_.push_back(keep(rule_->samples(0), degree_));
+  } else {
+    for (std::size_t d = 0; d < rule_->drawCount(); ++d) {
+      kept_.push_back(keep(rule_->listedDraw(d), degree_));
     }
   }
 }
@@ -29,9 +39,13 @@ void PreparedRule::integrateSamples(const Link& link, const RuleSamples& samples
 }
 
 void PreparedRule::integrate(const Link& link, std::uint64_t seed, CouplingAccumulator& accumulator,
-                             LinkIntegral& result) const {
-  if (!rule_->isRandom()) {
-    integrateSamples(link, fixedSamples_, &receiverBasis_, &sourceBasis_, accumulator, result);
+                             LinkIntegral& result, std::size_t trial) const {
+  if (!kept_.empty()) {
+    const std::size_t index = rule_->isRandom() ? trial : 0;
+    if (index >= kept_.size()) rule_->listedDraw(index);  // throws, naming the rule
+    const KeptDraw& draw = kept_[index];
+    integrateSamples(link, draw.samples, &draw.receiverBasis, &draw.sourceBasis, accumulator,
+                     result);
     return;
   }
   // Rules that stream their points (Stratified:k, the reference) are integrated block by
@@ -52,10 +66,10 @@ void PreparedRule::integrate(const Link& link, std::uint64_t seed, CouplingAccum
   }
 }
 
-LinkIntegral PreparedRule::integrate(const Link& link, std::uint64_t seed) const {
+LinkIntegral PreparedRule::integrate(const Link& link, std::uint64_t seed, std::size_t trial) const {
   CouplingAccumulator accumulator;
   LinkIntegral result;
-  integrate(link, seed, accumulator, result);
+  integrate(link, seed, accumulator, result, trial);
   return result;
 }
 

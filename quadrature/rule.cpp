@@ -1,5 +1,7 @@
 #include "quadrature/rule.h"
 
+#include "kernel/input_error.h"
+
 namespace radquad {
 
 LinkSamples flattenedPoints(const RuleSamples& samples) {
@@ -12,6 +14,19 @@ LinkSamples flattenedPoints(const RuleSamples& samples) {
     }
   }
   return out;
+}
+
+const RuleSamples& Rule::listedDraw(std::size_t trial) const {
+  throw InputError("rule " + name() + " lists no draws (trial " + std::to_string(trial) + ")");
+}
+
+void checkDrawCount(const Rule& rule, int trials, const std::string& where) {
+  const std::size_t count = rule.drawCount();
+  if (count > 0 && std::size_t(trials) > count) {
+    throw InputError(where + ": rule " + rule.name() + " lists " + std::to_string(count) +
+                     (count == 1 ? " draw" : " draws") + " but " + std::to_string(trials) +
+                     " trials are asked (trial t uses draw t)");
+  }
 }
 
 std::string Rule::toString() const {

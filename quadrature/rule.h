@@ -49,8 +49,14 @@ class Rule {
   virtual bool isRandom() const { return false; }
 
   // The points for one trial. Random rules must give the same points for the same seed on
-  // every machine and thread count.
+  // every machine and thread count. Rules given as a list of draws (below) give draw 0.
   virtual RuleSamples samples(std::uint64_t seed) const = 0;
+  // Random rules given as a list of draws rather than by a seed (rule files with "draws",
+  // Python callables): trial t uses draw t, whatever the seed. How many draws such a rule
+  // lists; 0 for every other rule.
+  virtual std::size_t drawCount() const { return 0; }
+  // Draw `trial` (< drawCount()) of such a rule.
+  virtual const RuleSamples& listedDraw(std::size_t trial) const;
   // The same points written into `out`, reusing its storage (the hot path of random rules).
   virtual void drawSamples(std::uint64_t seed, RuleSamples& out) const { out = samples(seed); }
   // The same points, block by block, for rules of equal weights that can produce any range of
@@ -59,5 +65,9 @@ class Rule {
 
   std::string toString() const;
 };
+
+// InputError naming the rule when it lists fewer draws than the `trials` asked of it (`where`:
+// the option or config that asks).
+void checkDrawCount(const Rule& rule, int trials, const std::string& where);
 
 }  // namespace radquad

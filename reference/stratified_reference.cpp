@@ -7,7 +7,7 @@
 
 #include "kernel/input_error.h"
 #include "quadrature/prepared_rule.h"
-#include "quadrature/random/philox.h"
+#include "quadrature/random/seeds.h"
 #include "quadrature/rules/stratified.h"
 
 namespace radquad {
@@ -32,7 +32,7 @@ Draws drawReplicates(const Link& link, int degree, std::uint64_t seed, int strat
   Draws draws;
   draws.integrals.resize(std::size_t(replicates));
   for (int j = 0; j < replicates; ++j) {
-    prepared.integrate(link, derivedSeed(seed, firstIndex + std::uint32_t(j)), accumulator,
+    prepared.integrate(link, replicateSeed(seed, firstIndex + std::uint32_t(j)), accumulator,
                        draws.integrals[std::size_t(j)]);
   }
   return draws;

@@ -3,7 +3,7 @@
 //
 // The reference value is one draw of the rule `Reference` (= Stratified:10) with the given
 // seed. Its standard error is estimated from independent replicates: R draws of the same
-// rule with seeds derivedSeed(seed, 0..R-1) (replicate 0 is the reported draw itself); the
+// rule with seeds replicateSeed(seed, 0..R-1) (replicate 0 is the reported draw itself); the
 // sample standard deviation of the R draws, entry by entry, estimates the standard
 // deviation of one draw, which is the standard error of the reported value. This makes no
 // assumption about the integrand (smooth or cut by shadows), unlike collapsed-strata
@@ -43,7 +43,7 @@ ReferenceEstimate stratifiedReference(const Link& link, int degree, std::uint64_
                                       const ReferenceOptions& options = {});
 
 // Mean and standard error of the mean of R independent draws of Stratified:k with seeds
-// derivedSeed(seed, firstIndex + j); used by the dense gold reference of occluded links.
+// replicateSeed(seed, firstIndex + j); used by the dense gold reference of occluded links.
 struct ReplicateMean {
   Eigen::MatrixXd coupling, couplingStandardError;
   double formFactor = 0.0, formFactorStandardError = 0.0;

@@ -4,9 +4,10 @@
 For each scene: one `radquad trace` (the yardstick, 2^21 paths per patch), then
 `radquad solve --degree D` for D = 0..3 at default settings, each timed with /usr/bin/time
 (CPU seconds and peak memory). Writes results/solver_accuracy.json: per scene and degree, the
-solve's cost, its worst and mean |relative difference| over patches and channels, and every
-patch's relative difference per channel with the trace's relative standard error.
-The JSON is written to a temporary file and renamed, so a failed run leaves the old one.
+solve's elements, its worst and mean |relative difference| over patches and channels, and every
+patch's relative difference per channel with the trace's relative standard error; the times
+and memory, which change from run to run, go to the run record results/solver_accuracy.run.json.
+Each JSON is written to a temporary file and renamed, so a failed run leaves the old one.
 
 Usage: /usr/bin/python3 scripts/solver_accuracy.py [--radquad PATH] [--out FILE]
        [--samples N] [--scenes cornell,slats] [--degrees 0,1,2,3]
@@ -66,31 +67,43 @@ def main():
     if args.samples < 1 or any(d < 0 or d > 3 for d in degrees):
         sys.exit("solver_accuracy: --samples must be >= 1 and --degrees within 0..3")
     out = {"samples": args.samples, "settings": "radquad solve defaults", "scenes": []}
+    # What changes from run to run (CPU times, memory) goes to the run record beside the result.
+    record = {"result": os.path.basename(args.out), "scenes": []}
     for scene in args.scenes.split(","):
         print(f"solver_accuracy: tracing {scene}", file=sys.stderr)
         traced, trace_cpu, _ = run_json([args.radquad, "trace", scene, "--samples", str(args.samples),
                                          "--quiet"], f"radquad trace {scene}")
-        entry = {"scene": scene, "trace_cpu_seconds": trace_cpu, "degrees": []}
+        entry = {"scene": scene, "degrees": []}
+        timed = {"scene": scene, "trace_cpu_seconds": trace_cpu, "degrees": []}
         for degree in degrees:
             print(f"solver_accuracy: solving {scene} at degree {degree}", file=sys.stderr)
             solved, cpu, peak = run_json([args.radquad, "solve", scene, "--degree", str(degree),
                                           "--quiet"], f"radquad solve {scene} --degree {degree}")
             patches, worst, mean = compare(solved, traced)
-            entry["degrees"].append({
+            timed["degrees"].append({
                 "degree": degree, "cpu_seconds": cpu, "peak_memory_mib": peak / 1024.0,
-                "elapsed_seconds": solved["elapsed_seconds"], "elements": solved["elements"],
+                "elapsed_seconds": solved["elapsed_seconds"]})
+            entry["degrees"].append({
+                "degree": degree, "elements": solved["elements"],
                 "worst_relative_difference": worst, "mean_absolute_relative_difference": mean,
                 "patches": patches})
             print(f"  worst {worst['value']:+.4f} ({worst['patch']}, {worst['channel']}), "
                   f"mean {mean:.4f}, {cpu:.1f} s CPU, {peak / 1024 / 1024:.2f} GiB", file=sys.stderr)
         out["scenes"].append(entry)
-    directory = os.path.dirname(os.path.abspath(args.out))
+        record["scenes"].append(timed)
+    write_atomically(args.out, out)
+    stem = os.path.splitext(args.out)[0]
+    write_atomically(stem + ".run.json", record)
+
+
+def write_atomically(path, value):
+    directory = os.path.dirname(os.path.abspath(path))
     os.makedirs(directory, exist_ok=True)
     with tempfile.NamedTemporaryFile("w", dir=directory, delete=False, suffix=".tmp") as handle:
-        json.dump(out, handle, indent=1)
+        json.dump(value, handle, indent=1)
         handle.write("\n")
     os.chmod(handle.name, 0o644)
-    os.replace(handle.name, args.out)
+    os.replace(handle.name, path)
 
 
 if __name__ == "__main__":

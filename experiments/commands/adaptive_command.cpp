@@ -65,8 +65,12 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
   createOutputDirectory(plots);
 
   nlohmann::json out = runAdaptiveExperiments(command.runs, results / "plate1");
-  out["commit"] = gitCommit();
+  // Times change from run to run: they go to the run record (results/adaptive.run.json).
+  const nlohmann::json record = splitRunRecord(
+      out, {"elapsed_seconds", "coupling_seconds", "elapsed_seconds_runs", "coupling_seconds_runs",
+            "time_ratio", "coupling_time_ratio"});
   writeFileAtomically(results / "adaptive.json", out.dump(2) + "\n");
+  writeRunRecord(results / "adaptive.json", record);
   if (!command.runs.quiet)
     std::cerr << "radquad adaptive: wrote " << (results / "adaptive.json") << "\n";
 

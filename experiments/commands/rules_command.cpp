@@ -1,5 +1,6 @@
-// `radquad rules [--json]`: lists the registered rules; `radquad rules --dump NAME [--seed S]`
-// prints one rule's points in the rule-file format (experiments/rule_file.h).
+// `radquad rules [--json]`: lists the registered rules; `radquad rules --dump NAME [--seed S]
+// [--draws T]` prints one rule's points in the rule-file format (experiments/rule_file.h): a
+// random rule's draw for S, or its T draws for seeds S..S+T-1 as a rule of listed draws.
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -41,6 +42,7 @@ struct RulesOptions {
   bool asJson = false;
   std::string dump;
   std::string seedText = "0";
+  int draws = 0;
 };
 
 void addRulesCommand(CLI::App& app) {
@@ -53,6 +55,11 @@ void addRulesCommand(CLI::App& app) {
                       "reads it back); a random rule's draw for --seed");
   command->add_option("--seed", options->seedText, "Seed of a random rule's draw, a decimal 0..2^64-1")
       ->capture_default_str();
+  command->add_option("--draws", options->draws,
+                      "A random rule's draws for seeds S..S+T-1, written as a rule of listed "
+                      "draws (its trial t uses draw t: `radquad link --trials T --seed S` gives "
+                      "the same numbers with either)")
+      ->check(CLI::Range(1, 100000));
   command->callback([options] {
     if (options->dump.empty()) {
       runRules(options->asJson);
@@ -60,7 +67,7 @@ void addRulesCommand(CLI::App& app) {
     }
     const std::uint64_t seed =
         parseDecimalOption(options->seedText, "--seed", 0, ~std::uint64_t(0));
-    std::cout << ruleToJson(*findAnyRule(options->dump), seed).dump(1) << "\n";
+    std::cout << ruleToJson(*findAnyRule(options->dump), seed, options->draws).dump(1) << "\n";
   });
 }
 

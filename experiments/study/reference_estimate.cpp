@@ -4,7 +4,7 @@
 
 #include "experiments/json_input.h"
 #include "kernel/input_error.h"
-#include "quadrature/random/philox.h"
+#include "quadrature/random/seeds.h"
 #include "quadrature/rules/stratified.h"
 
 namespace radquad {
@@ -34,7 +34,7 @@ std::string ReferenceEstimator::name() const {
 
 void ReferenceEstimator::draw(const Link& link, std::uint64_t seed,
                               CouplingAccumulator& accumulator, LinkIntegral& result) const {
-  // Replicate 0 of stratifiedReference uses `seed` itself (derivedSeed(seed, 0) == seed).
+  // Replicate 0 of stratifiedReference uses `seed` itself (replicateSeed(seed, 0) == seed).
   draw_.integrate(link, seed, accumulator, result);
 }
 
@@ -49,7 +49,7 @@ ReferenceResult ReferenceEstimator::estimate(const Link& link, std::uint64_t see
   Eigen::MatrixXd squares = Eigen::MatrixXd::Zero(first.rows(), first.cols());
   LinkIntegral replicate;
   for (int j = 1; j < options_.replicates; ++j) {
-    draw_.integrate(link, derivedSeed(seed, std::uint32_t(j)), accumulator, replicate);
+    draw_.integrate(link, replicateSeed(seed, std::uint32_t(j)), accumulator, replicate);
     const Eigen::MatrixXd delta = replicate.coupling - mean;
     mean += delta / double(j + 1);
     squares += delta.cwiseProduct(replicate.coupling - mean);

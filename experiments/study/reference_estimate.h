@@ -36,7 +36,7 @@ class ReferenceEstimator {
             LinkIntegral& result) const;
   // The reported draw (as given by draw()) and its standard error from the replicates: the
   // estimator of stratifiedReference (reference/stratified_reference.h), replicate j drawn
-  // with derivedSeed(seed, j), computed here with the caller's scratch so that thousands of
+  // with replicateSeed(seed, j), computed here with the caller's scratch so that thousands of
   // links allocate nothing. Thread-safe.
   ReferenceResult estimate(const Link& link, std::uint64_t seed, const LinkIntegral& reportedDraw,
                            CouplingAccumulator& accumulator) const;

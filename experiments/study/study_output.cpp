@@ -87,16 +87,49 @@ void runPlotScript(const std::string& python, const std::string& script,
   }
 }
 
+std::filesystem::path runRecordPath(const std::filesystem::path& result) {
+  return result.parent_path() / (result.stem().string() + ".run.json");
+}
+
+nlohmann::json splitRunRecord(nlohmann::json& result, const std::vector<std::string>& keys) {
+  if (result.is_object()) {
+    nlohmann::json record = nlohmann::json::object();
+    for (const std::string& key : keys) {
+      if (result.contains(key)) {
+        record[key] = std::move(result[key]);
+        result.erase(key);
+      }
+    }
+    for (auto& [key, value] : result.items()) {
+      nlohmann::json inner = splitRunRecord(value, keys);
+      if (!inner.is_null()) record[key] = std::move(inner);
+    }
+    return record.empty() ? nlohmann::json() : record;
+  }
+  if (result.is_array()) {
+    nlohmann::json record = nlohmann::json::array();
+    bool any = false;
+    for (auto& value : result) {
+      record.push_back(splitRunRecord(value, keys));
+      any = any || !record.back().is_null();
+    }
+    return any ? record : nlohmann::json();
+  }
+  return nlohmann::json();
+}
+
+void writeRunRecord(const std::filesystem::path& result, nlohmann::json record) {
+  if (record.is_null()) record = nlohmann::json::object();
+  record["result"] = result.filename().string();
+  record["git_commit"] = gitCommit();
+  writeFileAtomically(runRecordPath(result), record.dump(2) + "\n");
+}
+
 nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options,
                              std::string* linkLines) {
-  const auto start = std::chrono::steady_clock::now();
   const StudyRun run = runStudy(config, options);
   if (linkLines != nullptr) *linkLines = linkTableLines(config, run);
-  nlohmann::json table = studyTable(config, options, run);
-  table["git_commit"] = gitCommit();
-  table["elapsed_seconds"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return table;
+  return studyTable(config, options, run);
 }
 
 StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
@@ -116,8 +149,11 @@ nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::
   StudyOptions runOptions = options;
   runOptions.keepDetails = !linksOutPath.empty();
   std::string linkLines;
+  const auto start = std::chrono::steady_clock::now();
   nlohmann::json table =
       runStudyTable(config, runOptions, linksOutPath.empty() ? nullptr : &linkLines);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Relative to the source tree when inside it, so committed tables name no machine's paths.
   const auto absolute = std::filesystem::weakly_canonical(configPath);
   const auto relative =
@@ -125,10 +161,10 @@ nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::
   const bool inside = !relative.empty() && *relative.begin() != "..";
   table["options"]["config_path"] = inside ? relative.string() : configPath.string();
   writeFileAtomically(outPath, table.dump(2) + "\n");
+  writeRunRecord(outPath, {{"elapsed_seconds", elapsed}});
   if (!linksOutPath.empty()) writeFileAtomically(linksOutPath, linkLines);
   if (options.progress) {
-    std::cerr << "radquad study: wrote " << outPath.string() << " in "
-              << table["elapsed_seconds"].get<double>() << " s\n";
+    std::cerr << "radquad study: wrote " << outPath.string() << " in " << elapsed << " s\n";
   }
   return table;
 }

@@ -1,5 +1,6 @@
-// Running a study config to a finished, stamped table: the JSON of studyTable plus
-// `git_commit` and `elapsed_seconds`, written atomically.
+// Running a study config to a finished table (the JSON of studyTable), written atomically,
+// with its run record beside it (the commit and the elapsed time: what changes from run to
+// run, kept out of the result so that regenerating it on an unchanged tree changes nothing).
 #pragma once
 
 #include <cstdint>
@@ -37,8 +38,20 @@ void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet);
 
-// The stamped table; with `linkLines`, the per-link table too (options.keepDetails must be
-// set).
+// The run record of a result file: in its folder, its stem + ".run.json" (results/fig1.json:
+// results/fig1.run.json). .gitignore keeps run records out of the repository.
+std::filesystem::path runRecordPath(const std::filesystem::path& result);
+
+// Moves every member named in `keys` out of `result`, at any depth, into a record of the same
+// shape (objects and arrays along the way), which it returns; what `result` keeps is then the
+// same on every run.
+nlohmann::json splitRunRecord(nlohmann::json& result, const std::vector<std::string>& keys);
+
+// Writes `record` with "result" (the result's file name) and "git_commit" (gitCommit())
+// added, atomically, to runRecordPath(result).
+void writeRunRecord(const std::filesystem::path& result, nlohmann::json record);
+
+// The table; with `linkLines`, the per-link table too (options.keepDetails must be set).
 nlohmann::json runStudyTable(const StudyConfig& config, const StudyOptions& options,
                              std::string* linkLines = nullptr);
 
@@ -54,8 +67,9 @@ StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
                                 const StudyOverrides& overrides);
 
 // Runs `config` (read from `configPath`, which the table records) and writes the table to
-// `outPath` (atomically) and, when `linksOutPath` is not empty, the per-link table there
-// (atomically, after the table). Returns the table as written.
+// `outPath` (atomically), its run record ({"elapsed_seconds"}, writeRunRecord) and, when
+// `linksOutPath` is not empty, the per-link table there (atomically, after the table).
+// Returns the table as written.
 nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::path& configPath,
                               const std::filesystem::path& outPath, const StudyOptions& options,
                               const std::filesystem::path& linksOutPath = {});

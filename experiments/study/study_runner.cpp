@@ -176,7 +176,7 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     for (int t = 0; t < trials; ++t) {
       scorers.rules[r].integrate(link,
                                  deriveSeed(config.seed, {classIndex, index, 3, std::uint64_t(t)}),
-                                 accumulator, estimate);
+                                 accumulator, estimate, std::size_t(t));
       if (detail) moments.add(estimate.coupling);
       relative += share * relativeError(estimate.coupling, K);
       frobenius += share * relativeFrobeniusError(estimate.coupling, K);
@@ -290,6 +290,7 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
     const Rule& rule = scorers.rules.back().rule();
     const int trials = rule.isRandom() ? config.trials : 1;
     checkSampleBudget(rule, trials, "rule " + rule.name());
+    checkDrawCount(rule, trials, "study trials");
     scorers.trials.push_back(trials);
     run.rules.push_back({rule.name(), rule.sampleCount(), rule.isRandom(), trials});
   }

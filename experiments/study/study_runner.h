@@ -4,7 +4,8 @@
 //
 // Determinism: candidate k of class c is drawn from deriveSeed(seed, {c, k, 0}); its
 // reference uses deriveSeed(seed, {c, k, 1}), its gold deriveSeed(seed, {c, k, 2}), and trial
-// t of a random rule deriveSeed(seed, {c, k, 3, t}). Candidates are scored in parallel
+// t of a random rule deriveSeed(seed, {c, k, 3, t}) (a rule of listed draws: its draw t, on
+// every link). Candidates are scored in parallel
 // (oneTBB) and stored by index; the first N qualifying candidates in index order form the
 // suite, so the output does not depend on the thread count.
 #pragma once
@@ -104,8 +105,8 @@ struct StudyRun {
 // Throws InputError when a class cannot be filled within max_candidates_per_link.
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options);
 
-// The error table (the JSON contract of README.md, "The study"), without `git_commit` and
-// `elapsed_seconds`, which the caller adds.
+// The error table (the JSON contract of README.md, "The study"); the commit and the elapsed
+// time go to the run record beside it (experiments/study/study_output.h).
 nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options,
                           const StudyRun& run);
 

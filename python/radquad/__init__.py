@@ -8,6 +8,8 @@
     radquad.integrate(link, rule)
     radquad.reference(link, degree=0, gold=True)      # as `radquad reference`
     radquad.study(config, rules=["FullGauss", rule])  # as `radquad study`, the table as a dict
+    radquad.study(config, rules=[lambda trial: radquad.Rule(my_points(trial), w)])
+                                                      # a random rule: trial t scores f(t)
 
 A link is a dict in LINK.json form ({"receiver": PATCH, "source": PATCH, "occluders": [...]},
 PATCH = {"origin": [x, y, z], "edge_u": [...], "edge_v": [...]}). Results are the command
@@ -15,7 +17,9 @@ line's JSON objects as dicts, with the matrices (coupling, standard errors, gold
 arrays; the numbers are the command line's, bit for bit. Bad input raises ValueError with the
 command line's message; a computation that fails raises ArithmeticError. Python rules are
 checked as rule files are (finite, in [0, 1], weights summing to 1, the declared degree) and
-give the same numbers as the same rule in a `File:` JSON file. README.md, "Python", says more.
+give the same numbers as the same rule in a `File:` JSON file. A random rule is a callable
+f(trial) -> Rule (or Rule.draws([...])): trial t of a study, or of integrate(..., trials=T),
+uses f(t) on every link, as a rule file's listed draws are. README.md, "Python", says more.
 """
 import json
 import os
@@ -91,11 +95,31 @@ class Rule:
                               "weights": _weight_list(source_weights, len(source), "source_weights")}})
         return rule
 
+    @classmethod
+    def draws(cls, rules, name=None, citation=""):
+        """A random rule given as its draws: trial t uses rules[t] (every one of the same form
+        and size, as a rule file's "draws")."""
+        rules = list(rules)
+        if not rules or not all(isinstance(rule, Rule) for rule in rules):
+            raise ValueError("draws must be a non-empty list of radquad.Rule objects")
+        listed = []
+        for rule in rules:
+            data = rule.to_json()
+            if "draws" in data:
+                raise ValueError(f"draws: rule {data['name']!r} is itself a list of draws")
+            listed.append({key: data[key] for key in ("points", "weights", "receiver", "source")
+                           if key in data})
+        combined = cls.__new__(cls)
+        combined._set({"name": name if name is not None else rules[0].name, "citation": citation,
+                       "draws": listed})
+        return combined
+
     def _set(self, data):
         self._json = json.dumps(data, allow_nan=False)
         _radquad.check_rule(self._json)  # the rule file's checks
         self.name = data["name"]
-        self.degree = data["degree"]
+        self.degree = data.get("degree")
+        self.random = "draws" in data
 
     def to_json(self):
         """The rule in the rule-file format (`--rule File:PATH` reads it)."""
@@ -110,16 +134,34 @@ def rules():
     return json.loads(_radquad.rules_json())
 
 
+def _drawn(function, trials):
+    """The rule of listed draws function(0), ..., function(trials - 1)."""
+    if trials < 1:
+        raise ValueError(f"trials must be at least 1, not {trials}")
+    rules = []
+    for trial in range(trials):
+        rule = function(trial)
+        if not isinstance(rule, Rule):
+            raise ValueError(f"a rule callable must return a radquad.Rule, not "
+                             f"{type(rule).__name__} (trial {trial})")
+        rules.append(rule)
+    return Rule.draws(rules)
+
+
 def _rule_argument(rule):
     if isinstance(rule, Rule):
         return rule._json
     if isinstance(rule, str):
         return rule
-    raise ValueError("rule must be a name (as radquad.rules() lists, or File:PATH) or a radquad.Rule")
+    raise ValueError("rule must be a name (as radquad.rules() lists, or File:PATH), a radquad.Rule "
+                     "or a callable f(trial) -> radquad.Rule")
 
 
 def integrate(link, rule, degree=0, seed=0, trials=1):
-    """One link's coupling with one rule, as `radquad link` prints it."""
+    """One link's coupling with one rule, as `radquad link` prints it. A callable rule
+    f(trial) -> Rule is drawn for trials 0..trials-1."""
+    if callable(rule) and not isinstance(rule, Rule):
+        rule = _drawn(rule, int(trials))
     result = _radquad.integrate(_link_json(link), _rule_argument(rule), int(degree), _seed(seed),
                                 int(trials))
     return _arrays(json.loads(result))
@@ -138,8 +180,9 @@ def study(config, rules=None, seed=None, gold=True):
     scored against the gold unless gold=False.
 
     config: a dict in the study config's form, or the path of a config file. rules: a list of
-    names or radquad.Rule objects, instead of the config's (Rule objects are scored as File:
-    rules, under their names, which the table's options record)."""
+    names, radquad.Rule objects or callables f(trial) -> Rule, instead of the config's (Rule
+    objects are scored as File: rules, under their names, which the table's options record; a
+    callable is drawn for the config's trials, default 10, and trial t scores f(t))."""
     if isinstance(config, (str, os.PathLike)):
         with open(config) as handle:
             config = json.load(handle)
@@ -148,6 +191,9 @@ def study(config, rules=None, seed=None, gold=True):
     if rules is not None and not isinstance(rules, (list, tuple)):
         raise ValueError("rules must be a list of names or radquad.Rule objects")
     rules = list(rules or [])
+    trials = config.get("trials", 10)
+    rules = [_drawn(rule, trials if isinstance(trials, int) else 10)
+             if callable(rule) and not isinstance(rule, Rule) else rule for rule in rules]
     labels = [rule.name if isinstance(rule, Rule) else rule for rule in rules]
     repeated = sorted({label for label in labels if labels.count(label) > 1})
     if repeated:

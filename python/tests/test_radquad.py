@@ -105,8 +105,6 @@ def test_study_with_a_python_rule_matches_the_command_line(tmp_path):
                     "--out", str(out), "--quiet"], check=True)
     command = json.loads(out.read_text())
     for table in (python, command):
-        for key in ("elapsed_seconds", "git_commit"):
-            table.pop(key)
         table["options"].pop("config_path", None)
     assert python["options"]["rules"] == ["FullGauss", "Rooks"]
     command["options"]["rules"] = ["FullGauss", "Rooks"]  # the command line names the file
@@ -137,3 +135,59 @@ def test_errors_are_value_errors_with_the_command_lines_messages(tmp_path):
     assert "missing key 'source'" in message
     with pytest.raises(ValueError, match="missing key 'source'"):
         radquad.integrate(bad, "FullGauss")
+
+
+def four_point_rule(trial):
+    """A deterministic rule of its own for each trial (points in [0, 1]^4, equal weights)."""
+    points = np.full((4, 4), 0.5)
+    points[:, 0] = [0.2, 0.4, 0.6, 0.8]
+    points[:, 2] = (np.arange(4) + 0.3 + 0.1 * trial) / 4
+    return radquad.Rule(points, np.full(4, 0.25), name=f"Four{trial}")
+
+
+def test_a_random_rule_from_a_callable_scores_trial_t_with_f_of_t(tmp_path):
+    # Two trials: per link, a random rule's errors are the means over its trials, so the
+    # callable's table is the mean of the two deterministic rules' tables, metric by metric.
+    config = {"figure": "fig2", "seed": 5, "classes": {"unoccluded": 2, "partial": 2},
+              "rules": ["FullGauss"], "trials": 2, "reference": {"replicates": 2}}
+    drawn = radquad.study(config, rules=[four_point_rule], gold=False)
+    apart = radquad.study(config, rules=[four_point_rule(0), four_point_rule(1)], gold=False)
+    for linkclass in ("unoccluded", "partial"):
+        entry = drawn["classes"][linkclass]["rules"][0]
+        first, second = apart["classes"][linkclass]["rules"]
+        assert entry["name"] == "Four0" and entry["trials"] == 2, entry
+        for metric in ("relative_error", "relative_frobenius_error"):
+            expected = 0.5 * (first[metric]["mean"] + second[metric]["mean"])
+            assert abs(entry[metric]["mean"] - expected) <= 1e-13 * expected, (metric, entry[metric])
+    # The same rule as a File: rule of listed draws, from JSON and from NumPy's .npz.
+    listed = radquad.Rule.draws([four_point_rule(0), four_point_rule(1)], name="Four0")
+    json_path, npz_path = tmp_path / "four.json", tmp_path / "four.npz"
+    json_path.write_text(json.dumps(listed.to_json()))
+    draws = listed.to_json()["draws"]
+    np.savez(npz_path, name="Four0", points=np.array([d["points"] for d in draws]),
+             weights=np.array([d["weights"] for d in draws]))
+    for path in (json_path, npz_path):
+        table = radquad.study(config, rules=[f"File:{path}"], gold=False)
+        assert table["classes"] == drawn["classes"], path
+    # Too few draws for the trials asked: refused, naming the rule.
+    with pytest.raises(ValueError, match="lists 2 draws but 3 trials"):
+        radquad.study(dict(config, trials=3), rules=[listed], gold=False)
+    with pytest.raises(ValueError, match="must return a radquad.Rule"):
+        radquad.study(config, rules=[lambda trial: "FullGauss"])
+
+
+def test_dumped_draws_reproduce_a_random_rules_trials(tmp_path):
+    # `rules --dump NAME --seed S --draws T` holds the draws of seeds S..S+T-1: the link's T
+    # trials with the file and with the registered rule are the same numbers.
+    path = tmp_path / "rooks.json"
+    path.write_text(json.dumps(cli("rules", "--dump", "NRook:50", "--seed", "9", "--draws", "3")))
+    from_file = cli("link", HALF, "--rule", f"File:{path}", "--seed", "9", "--trials", "3",
+                    "--degree", "1")
+    built_in = cli("link", HALF, "--rule", "NRook:50", "--seed", "9", "--trials", "3",
+                   "--degree", "1")
+    for key in ("coupling", "mean_coupling", "standard_deviation", "form_factor"):
+        same(from_file[key], built_in[key])
+    python = radquad.integrate(half_link(), lambda t: radquad.Rule(
+        np.array(json.loads(path.read_text())["draws"][t]["points"]), np.full(50, 0.02)),
+        degree=1, trials=3)
+    assert np.allclose(python["mean_coupling"], np.array(built_in["mean_coupling"]), rtol=1e-14)

@@ -205,13 +205,4 @@ void PhiloxStream::permutation(std::size_t n, std::vector<std::uint32_t>& out) {
   }
 }
 
-std::uint64_t derivedSeed(std::uint64_t seed, std::uint32_t index) {
-  if (index == 0) return seed;
-  // A block under a fixed key separates the derived seeds from the user's seeds S, S+1, ...
-  const PhiloxCounter block =
-      philox4x32({std::uint32_t(seed), std::uint32_t(seed >> 32), index, 0x7265706cu},
-                 {0x52616451u, 0x75616452u});
-  return (std::uint64_t(block[0]) << 32) | block[1];
-}
-
 }  // namespace radquad

@@ -75,7 +75,5 @@ class PhiloxStream {
   int used_ = 4;
 };
 
-// A seed derived from (seed, index) for independent replicates; index 0 gives `seed` itself.
-std::uint64_t derivedSeed(std::uint64_t seed, std::uint32_t index);
 
 }  // namespace radquad

@@ -1,6 +1,7 @@
 // What the random rules (MonteCarlo, NRook, Stratified) share: no declared degree, a seed,
 // equal weights 1/N, and the parsing of their parameter. Their points come from Philox
-// blocks keyed by the seed (quadrature/random/philox.h), so a seed gives the same points on
+// blocks keyed by the seed (quadrature/random/philox.h), in streams named by their family
+// (randomStream in quadrature/random/seeds.h), so a seed gives the same points on
 // every machine and thread count.
 #pragma once
 
@@ -10,14 +11,6 @@
 #include "quadrature/rule.h"
 
 namespace radquad {
-
-// Philox stream numbers: each rule family draws from its own streams.
-enum class RandomStream : std::uint32_t {
-  kMonteCarlo = 1,
-  kNRookJitter = 2,
-  kNRookPermutation = 3,
-  kStratified = 4,
-};
 
 class RandomPointRule : public Rule {
  public:

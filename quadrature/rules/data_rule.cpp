@@ -39,20 +39,13 @@ void checkWeights(const std::vector<double>& weights, const std::string& where,
 
 }  // namespace
 
-std::size_t DataRule::sampleCount() const {
-  return spec_.product ? spec_.receiver.size() * spec_.source.size() : spec_.points.size();
-}
+std::size_t DataRule::sampleCount() const { return spec_.draws.front().size(); }
 
-RuleSamples DataRule::samples(std::uint64_t) const {
-  RuleSamples out;
-  out.isProduct = spec_.product;
-  if (spec_.product) {
-    out.receiver = spec_.receiver;
-    out.source = spec_.source;
-  } else {
-    out.points = spec_.points;
-  }
-  return out;
+RuleSamples DataRule::samples(std::uint64_t) const { return spec_.draws.front(); }
+
+const RuleSamples& DataRule::listedDraw(std::size_t trial) const {
+  if (!spec_.random || trial >= spec_.draws.size()) return Rule::listedDraw(trial);
+  return spec_.draws[trial];
 }
 
 double legendreExactnessError(const LinkSamples& points, int degree) {
@@ -85,31 +78,43 @@ double legendreExactnessError(const LinkSamples& points, int degree) {
 
 std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where) {
   if (spec.name.empty()) throw InputError(where + ": the rule has no name");
-  if (spec.product) {
-    checkCoordinates(spec.receiver.u, where, "receiver.points u");
-    checkCoordinates(spec.receiver.v, where, "receiver.points v");
-    checkCoordinates(spec.source.u, where, "source.points u");
-    checkCoordinates(spec.source.v, where, "source.points v");
-    checkWeights(spec.receiver.weight, where, "receiver");
-    checkWeights(spec.source.weight, where, "source");
-  } else {
-    checkCoordinates(spec.points.s, where, "points s");
-    checkCoordinates(spec.points.t, where, "points t");
-    checkCoordinates(spec.points.u, where, "points u");
-    checkCoordinates(spec.points.v, where, "points v");
-    checkWeights(spec.points.weight, where, "");
+  if (spec.draws.empty()) throw InputError(where + ": the rule lists no draws");
+  if (!spec.random && spec.draws.size() > 1) {
+    throw InputError(where + ": a deterministic rule has one draw, not " +
+                     std::to_string(spec.draws.size()));
+  }
+  if (spec.random && spec.degree) {
+    throw InputError(where + ": a rule given as draws is random and declares no degree");
+  }
+  const RuleSamples& first = spec.draws.front();
+  for (std::size_t d = 0; d < spec.draws.size(); ++d) {
+    const RuleSamples& draw = spec.draws[d];
+    const std::string at = spec.random ? where + ": draws[" + std::to_string(d) + "]" : where;
+    if (draw.isProduct != first.isProduct || draw.size() != first.size() ||
+        (draw.isProduct && draw.receiver.size() != first.receiver.size())) {
+      throw InputError(at + ": every draw must have the form and the point counts of draw 0");
+    }
+    if (draw.isProduct) {
+      checkCoordinates(draw.receiver.u, at, "receiver.points u");
+      checkCoordinates(draw.receiver.v, at, "receiver.points v");
+      checkCoordinates(draw.source.u, at, "source.points u");
+      checkCoordinates(draw.source.v, at, "source.points v");
+      checkWeights(draw.receiver.weight, at, "receiver");
+      checkWeights(draw.source.weight, at, "source");
+    } else {
+      checkCoordinates(draw.points.s, at, "points s");
+      checkCoordinates(draw.points.t, at, "points t");
+      checkCoordinates(draw.points.u, at, "points u");
+      checkCoordinates(draw.points.v, at, "points v");
+      checkWeights(draw.points.weight, at, "");
+    }
   }
   if (spec.degree) {
     if (*spec.degree < 0 || *spec.degree > kMaxDataRuleDegree) {
       throw InputError(where + ": degree " + std::to_string(*spec.degree) + " is not in [0, " +
                        std::to_string(kMaxDataRuleDegree) + "] (or null)");
     }
-    RuleSamples samples;
-    samples.isProduct = spec.product;
-    samples.receiver = spec.receiver;
-    samples.source = spec.source;
-    samples.points = spec.points;
-    const LinkSamples flat = flattenedPoints(samples);
+    const LinkSamples flat = flattenedPoints(first);
     double absolute = 0.0;
     for (double w : flat.weight) absolute += std::fabs(w);
     for (int degree = 0; degree <= *spec.degree; ++degree) {

@@ -1,16 +1,21 @@
 // Rules given as data (points and weights) rather than code: what `File:PATH` rules and
 // `radquad rules --dump` exchange (experiments/rule_file.h has the file format).
 //
-// A data rule is deterministic. It is a product of a receiver and a source point set (kept
-// as a product, so the coupling code's fast path is used) or a list of 4D points. It is
-// checked when it is made: every coordinate in [0, 1], every value finite, weights summing to
-// 1, and, when a degree is declared, exactness for every polynomial of total degree up to it
-// (the tensor Legendre polynomials, as the registry's own rules are tested).
+// A data rule is a product of a receiver and a source point set (kept as a product, so the
+// coupling code's fast path is used) or a list of 4D points. It is deterministic (one draw),
+// or random, given as a list of draws: trial t of a study or of `radquad link --trials` uses
+// draw t (Rule::listedDraw), so a rule drawn by any outside generator is scored as the built-in
+// random rules are. Every draw has the same form and the same number of points. It is checked
+// when it is made: every coordinate in [0, 1], every value finite, weights summing to 1, and,
+// when a degree is declared (deterministic rules only), exactness for every polynomial of
+// total degree up to it (the tensor Legendre polynomials, as the registry's own rules are
+// tested).
 #pragma once
 
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "quadrature/rule.h"
 
@@ -24,9 +29,8 @@ struct DataRuleSpec {
   std::string name;
   std::optional<int> degree;  // total degree integrated exactly; none: not claimed
   std::string citation;
-  bool product = false;
-  PatchSamples receiver, source;  // product rules
-  LinkSamples points;             // other rules
+  bool random = false;             // a list of draws, one per trial
+  std::vector<RuleSamples> draws;  // one for a deterministic rule
 };
 
 class DataRule : public Rule {
@@ -36,7 +40,10 @@ class DataRule : public Rule {
   std::optional<int> degree() const override { return spec_.degree; }
   std::string family() const override { return "data"; }
   std::string citation() const override { return spec_.citation; }
+  bool isRandom() const override { return spec_.random; }
   RuleSamples samples(std::uint64_t seed) const override;
+  std::size_t drawCount() const override { return spec_.random ? spec_.draws.size() : 0; }
+  const RuleSamples& listedDraw(std::size_t trial) const override;
 
  private:
   friend std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where);

@@ -1,6 +1,7 @@
 #include "quadrature/rules/monte_carlo.h"
 
 #include "quadrature/random/philox.h"
+#include "quadrature/random/seeds.h"
 
 namespace radquad {
 
@@ -17,7 +18,7 @@ void MonteCarloRule::drawSamples(std::uint64_t seed, RuleSamples& out) const {
   const std::size_t count = std::size_t(count_);
   resizeEqualWeights(count, out);
   LinkSamples& p = out.points;
-  philoxUniformQuads(philoxKey(seed), std::uint32_t(RandomStream::kMonteCarlo), 0, count,
+  philoxUniformQuads(philoxKey(seed), randomStream(kFamily, 0), 0, count,
                      p.s.data(), p.t.data(), p.u.data(), p.v.data());
 }
 

@@ -8,11 +8,13 @@
 // |----------------|---------|-----------------------------------|
 // | `MonteCarlo`   | 81      |                                   |
 // | `MonteCarlo:n` | n       | n = 1..10,000,000 points          |
-// Degree: none. Seed: point k is drawn from Philox blocks 2k and 2k+1 of stream kMonteCarlo.
+// Degree: none. Seed: point k is drawn from Philox blocks 2k and 2k+1 of stream randomStream(kFamily, 0)
+// (quadrature/random/seeds.h).
 #pragma once
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "quadrature/random/random_rule.h"
 
@@ -24,7 +26,8 @@ class MonteCarloRule : public RandomPointRule {
 
   std::string name() const override { return name_; }
   std::size_t sampleCount() const override { return std::size_t(count_); }
-  std::string family() const override { return "Monte Carlo"; }
+  static constexpr std::string_view kFamily = "Monte Carlo";  // also names its random streams
+  std::string family() const override { return std::string(kFamily); }
   std::string citation() const override;
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override;
 

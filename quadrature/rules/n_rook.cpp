@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "quadrature/random/philox.h"
+#include "quadrature/random/seeds.h"
 
 namespace radquad {
 
@@ -22,10 +23,10 @@ void NRookRule::drawSamples(std::uint64_t seed, RuleSamples& out) const {
   resizeEqualWeights(count, out);
   thread_local std::array<std::vector<std::uint32_t>, 4> permutations;
   thread_local std::vector<std::uint32_t> words;
-  PhiloxStream stream(seed, std::uint32_t(RandomStream::kNRookPermutation));
+  PhiloxStream stream(seed, randomStream(kFamily, 1));
   for (auto& permutation : permutations) stream.permutation(count, permutation);
   words.resize(8 * count);
-  philoxBlocks(philoxKey(seed), std::uint32_t(RandomStream::kNRookJitter), 0, 2 * count,
+  philoxBlocks(philoxKey(seed), randomStream(kFamily, 0), 0, 2 * count,
                words.data());
   const double width = 1.0 / double(count);
   const double below = std::nextafter(1.0, 0.0);

@@ -12,12 +12,13 @@
 // | `NRook`   | 81      |                           |
 // | `NRook:n` | n       | n = 1..10,000,000 points  |
 // Degree: none. Seed: the four permutations come, in axis order s, t, u, v, from one
-// sequential Philox stream (kNRookPermutation); the jitter of point k from blocks 2k, 2k+1
-// of stream kNRookJitter. Point k has coordinate (perm_axis[k] + jitter) / n on each axis.
+// sequential Philox stream (randomStream(kFamily, 1)); the jitter of point k from blocks 2k, 2k+1
+// of stream randomStream(kFamily, 0). Point k has coordinate (perm_axis[k] + jitter) / n on each axis.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "quadrature/random/random_rule.h"
 
@@ -29,7 +30,8 @@ class NRookRule : public RandomPointRule {
 
   std::string name() const override { return name_; }
   std::size_t sampleCount() const override { return std::size_t(count_); }
-  std::string family() const override { return "N-rooks Monte Carlo"; }
+  static constexpr std::string_view kFamily = "N-rooks Monte Carlo";  // also names its random streams
+  std::string family() const override { return std::string(kFamily); }
   std::string citation() const override;
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override;
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "quadrature/random/philox.h"
+#include "quadrature/random/seeds.h"
 
 namespace radquad {
 
@@ -26,7 +27,7 @@ void StratifiedRule::fillPoints(std::uint64_t seed, std::size_t first, std::size
                                 double* __restrict s, double* __restrict t, double* __restrict u,
                                 double* __restrict v) const {
   // The jitter of cell c: Philox blocks 2c and 2c+1 (eight words, two per coordinate).
-  philoxUniformQuads(philoxKey(seed), std::uint32_t(RandomStream::kStratified),
+  philoxUniformQuads(philoxKey(seed), randomStream(kFamily, 0),
                      std::uint32_t(first), count, s, t, u, v);
   // The cell's digits (i_s, i_t, i_u, i_v) in base k, as exact small integers in doubles so
   // the loop vectorises: q = floor((c + 1/2) / k) (a truncation, the value being positive)

@@ -12,13 +12,14 @@
 // | `Reference`    | 10,000  | k = 10                   |
 // | `Stratified:k` | k^4     | k = 1..56 strata per axis |
 // Degree: none. Seed: the cell c = ((i_s k + i_t) k + i_u) k + i_v draws its jitter from
-// Philox blocks 2c and 2c+1 of stream kStratified, so the point of a cell depends only on
+// Philox blocks 2c and 2c+1 of stream randomStream(kFamily, 0), so the point of a cell depends only on
 // (seed, c). Points are listed in cell order; pointStream(seed) gives the same points block
 // by block (any range of cells), which the reference integrates without storing them.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "quadrature/random/random_rule.h"
 
@@ -30,7 +31,8 @@ class StratifiedRule : public RandomPointRule {
 
   std::string name() const override { return name_; }
   std::size_t sampleCount() const override;
-  std::string family() const override { return "Stratified Monte Carlo"; }
+  static constexpr std::string_view kFamily = "Stratified Monte Carlo";  // also names its random streams
+  std::string family() const override { return std::string(kFamily); }
   std::string citation() const override;
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override;
   std::unique_ptr<PointStream> pointStream(std::uint64_t seed) const override;

@@ -49,11 +49,16 @@ mkdir -p "$work/adaptive"
 expect_status 0 "adaptive, two timing repeats" "" adaptive --scenes cornell --degrees 1 \
   --bf-eps 1 --sweep 1 --sweep-bf-eps 1 --sweep-degree 1 --timing-repeats 2 \
   --results "$work/adaptive" --plots "$work/adaptive" --quiet
-if ! /usr/bin/python3 - "$work/adaptive/adaptive.json" <<'PY'
+if ! /usr/bin/python3 - "$work/adaptive/adaptive.json" "$work/adaptive/adaptive.run.json" <<'PY'
 import json, sys
 out = json.load(open(sys.argv[1]))
 assert out["options"]["timing_repeats"] == 2, out["options"]
-row = out["table"][0]
+text = open(sys.argv[1]).read()
+assert "seconds" not in text and "time_ratio" not in text and "commit" not in text, "times in the result"
+record = json.load(open(sys.argv[2]))  # the times, in the result's shape
+assert record["result"] == "adaptive.json" and "git_commit" in record, record.keys()
+assert set(out["table"][0]) >= set(record["table"][0]) - {"scene", "degree"}
+row = record["table"][0]
 for choice in ("fixed", "adaptive", "adaptive-novis"):
     run = row[choice]
     assert len(run["elapsed_seconds_runs"]) == 2, run

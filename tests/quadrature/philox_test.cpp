@@ -1,5 +1,6 @@
 // Philox4x32-10 against the Random123 known-answer vectors, and the conversions built on it.
 #include "quadrature/random/philox.h"
+#include "quadrature/random/seeds.h"
 
 #include <gtest/gtest.h>
 
@@ -119,11 +120,18 @@ TEST(Philox, PermutationsArePermutationsAndUniform) {
   EXPECT_LT(chiSquare, 20.5);
 }
 
-TEST(Philox, DerivedSeedsKeepReplicateZeroAndDiffer) {
-  EXPECT_EQ(derivedSeed(42, 0), 42u);
-  EXPECT_NE(derivedSeed(42, 1), derivedSeed(42, 2));
-  EXPECT_NE(derivedSeed(42, 1), derivedSeed(43, 1));
-  EXPECT_NE(derivedSeed(42, 1), 43u);
+TEST(Seeds, ReplicateZeroIsTheSeedAndTheOthersDiffer) {
+  EXPECT_EQ(replicateSeed(42, 0), 42u);
+  EXPECT_NE(replicateSeed(42, 1), replicateSeed(42, 2));
+  EXPECT_NE(replicateSeed(42, 1), replicateSeed(43, 1));
+  EXPECT_NE(replicateSeed(42, 1), 43u);
+  EXPECT_NE(deriveSeed(7, {1, 2}), deriveSeed(7, {2, 1}));
+}
+
+// The mix is SplitMix64's: the published generator (state += 0x9e3779b97f4a7c15, output the
+// finaliser of the state) gives 0xe220a8397b1dcdaf first from state 0 (Vigna's splitmix64.c).
+TEST(Seeds, MixIsSplitMix64) {
+  EXPECT_EQ(mix64(0x9e3779b97f4a7c15ULL), 0xe220a8397b1dcdafULL);
 }
 
 }  // namespace

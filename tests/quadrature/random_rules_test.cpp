@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "quadrature/prepared_rule.h"
 #include "quadrature/random/philox.h"
 #include "quadrature/random/random_rule.h"
+#include "quadrature/random/seeds.h"
 #include "quadrature/registry.h"
 #include "tests/support/analytic_form_factors.h"
 
@@ -78,7 +80,7 @@ std::vector<std::string> randomRuleNames() {
 
 // The reproducibility contract of Stratified:k written out with scalar code: cell
 // c = ((i_s k + i_t) k + i_u) k + i_v takes its jitter from Philox blocks 2c and 2c+1 of
-// stream kStratified under the seed's key, point = min((i + uniform) / k, 1 - 2^-53) per axis.
+// stream randomStream("Stratified Monte Carlo", 0) under the seed's key, point = min((i + uniform) / k, 1 - 2^-53) per axis.
 // The rule's samples and its stream (any range of cells) must give exactly these points.
 TEST(Stratified, PointsFollowTheDocumentedStreamAndTheStreamMatchesTheSamples) {
   for (const auto& [name, k] :
@@ -89,7 +91,7 @@ TEST(Stratified, PointsFollowTheDocumentedStreamAndTheStreamMatchesTheSamples) {
     const std::size_t count = samples.size();
     const double below = std::nextafter(1.0, 0.0);
     for (std::size_t c = 0; c < count; ++c) {
-      const std::uint32_t stream = std::uint32_t(RandomStream::kStratified);
+      const std::uint32_t stream = randomStream("Stratified Monte Carlo", 0);
       const PhiloxCounter even = philox4x32({std::uint32_t(2 * c), 0, stream, 0}, philoxKey(seed));
       const PhiloxCounter odd =
           philox4x32({std::uint32_t(2 * c + 1), 0, stream, 0}, philoxKey(seed));
@@ -191,6 +193,23 @@ TEST(RandomRules, ParametrisedFormsRejectBadParameters) {
   }
   EXPECT_EQ(findRule("Stratified:4")->sampleCount(), 256u);
   EXPECT_EQ(findRule("MonteCarlo:17")->sampleCount(), 17u);
+}
+
+// Stream numbers are derived from the family's name (quadrature/random/seeds.h): the
+// registered random families, with four purposes each, must not share a stream, and the
+// same name must always give the same stream.
+TEST(RandomRules, EveryRegisteredFamilyDrawsFromItsOwnStreams) {
+  std::set<std::string> families;
+  for (const std::string& name : randomRuleNames()) families.insert(findRule(name)->family());
+  ASSERT_GE(families.size(), 3u);
+  std::set<std::uint32_t> streams;
+  for (const std::string& family : families) {
+    for (std::uint32_t purpose = 0; purpose < 4; ++purpose) {
+      EXPECT_TRUE(streams.insert(randomStream(family, purpose)).second) << family << " " << purpose;
+      EXPECT_EQ(randomStream(family, purpose), randomStream(std::string(family), purpose));
+    }
+  }
+  static_assert(randomStream("Monte Carlo", 0) != randomStream("Monte Carlo", 1));
 }
 
 }  // namespace

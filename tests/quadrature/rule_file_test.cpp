@@ -144,5 +144,63 @@ TEST(NpyArrays, BadMembersAreRefusedNamingThem) {
   refused(npy("{'descr': '<f8', 'shape': (1,), }", eight), "fortran_order");
 }
 
+// A random rule's draws for seeds S..S+T-1, written as a rule of listed draws and read back:
+// trial t integrates exactly what the built-in rule gives for seed S + t (product and
+// scattered rules; Stratified streams its points, so equal to rounding there).
+TEST(RuleFile, ListedDrawsReproduceTheRandomRulesTrials) {
+  for (const std::string name : {"MonteCarlo:40", "NRook:30", "Stratified:2"}) {
+    const auto rule = findRule(name);
+    const nlohmann::json written = ruleToJson(*rule, 1000, 3);
+    ASSERT_TRUE(written.contains("draws")) << name;
+    const auto read = parseRuleJson(nlohmann::json::parse(written.dump()), name);
+    EXPECT_TRUE(read->isRandom());
+    EXPECT_EQ(read->drawCount(), 3u);
+    EXPECT_EQ(read->degree(), std::nullopt);
+    const PreparedRule original(rule, 2), listed(read, 2);
+    for (std::size_t t = 0; t < 3; ++t) {
+      const LinkIntegral a = original.integrate(testLink(), 1000 + t);
+      const LinkIntegral b = listed.integrate(testLink(), 12345, t);  // the seed plays no part
+      EXPECT_LE((a.coupling - b.coupling).cwiseAbs().maxCoeff(),
+                1e-14 * a.coupling.cwiseAbs().maxCoeff())
+          << name << " trial " << t;
+      if (name != std::string("Stratified:2")) {
+        EXPECT_EQ(a.coupling, b.coupling) << name;
+      }
+    }
+    EXPECT_THROW(listed.integrate(testLink(), 0, 3), InputError);
+    EXPECT_THROW(checkDrawCount(*read, 4, "trials"), InputError);
+    EXPECT_NO_THROW(checkDrawCount(*read, 3, "trials"));
+    // Written again, the listed rule is the same file.
+    EXPECT_EQ(ruleToJson(*read, 0).dump(), written.dump()) << name;
+  }
+}
+
+TEST(RuleFile, ListedDrawsAreCheckedDrawByDraw) {
+  const nlohmann::json one = {{"points", {{0.5, 0.5, 0.5, 0.5}}}, {"weights", {1.0}}};
+  const nlohmann::json two = {{"points", {{0.25, 0.5, 0.5, 0.5}, {0.75, 0.5, 0.5, 0.5}}},
+                              {"weights", {0.5, 0.5}}};
+  const nlohmann::json outside = {{"points", {{0.5, 1.5, 0.5, 0.5}}}, {"weights", {1.0}}};
+  auto message = [](const nlohmann::json& rule) {
+    try {
+      parseRuleJson(rule, "draws.json");
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message({{"name", "D"}, {"draws", {one, two}}}).find("draws[1]"), std::string::npos);
+  EXPECT_NE(message({{"name", "D"}, {"draws", {one, outside}}}).find("draws[1]"),
+            std::string::npos);
+  EXPECT_NE(message({{"name", "D"}, {"draws", nlohmann::json::array()}}).find("non-empty"),
+            std::string::npos);
+  EXPECT_NE(message({{"name", "D"}, {"degree", 1}, {"draws", {one}}}).find("declares no degree"),
+            std::string::npos);
+  nlohmann::json both = one;
+  both["name"] = "D";
+  both["draws"] = {one};
+  EXPECT_NE(message(both).find("not both"), std::string::npos);
+  EXPECT_EQ(message({{"name", "D"}, {"draws", {one, one}}}), "accepted");
+}
+
 }  // namespace
 }  // namespace radquad

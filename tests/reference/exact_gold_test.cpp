@@ -25,12 +25,16 @@ std::vector<Eigen::Vector3d> cornersOf(const Patch& patch) {
 }
 
 // The dense stratified gold (an independent, random method) and the exact gold agree within
-// 4 of the dense gold's standard errors on every coefficient.
+// 5 of the dense gold's standard errors on every coefficient. The standard error comes from
+// R = 64 replicates, so a correct gold's deviation over it follows Student's t with 63 degrees
+// of freedom: P(|t_63| > 5) = 4.9e-6 per coefficient, 5e-4 over the test's 98
+// coefficients. (With R = 8 the estimated error itself is too uncertain: P(|t_7| > 4) = 0.005
+// per coefficient.)
 void expectAgreesWithDenseGold(const Link& link, int degree) {
   GoldOptions dense;
   dense.method = GoldMethod::stratified;
   dense.denseStrata = 16;
-  dense.denseReplicates = 8;
+  dense.denseReplicates = 64;
   const GoldReference stratified = goldReference(link, degree, 11, dense);
   ASSERT_EQ(stratified.method, "dense stratified");
   const ExactGold exact = exactGold(link, degree);
@@ -39,7 +43,7 @@ void expectAgreesWithDenseGold(const Link& link, int degree) {
   for (int a = 0; a < n; ++a) {
     for (int b = 0; b < n; ++b) {
       EXPECT_LT(std::fabs(exact.coupling(a, b) - stratified.coupling(a, b)),
-                4.0 * stratified.couplingError(a, b) + 1e-12)
+                5.0 * stratified.couplingError(a, b) + 1e-12)
           << "K[" << a << "][" << b << "] degree " << degree;
     }
   }
