@@ -6,7 +6,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "radiosity/path_tracer.h"
 #include "tests/radiosity/scenes_for_tests.h"
@@ -71,7 +70,6 @@ TEST(PathTracerDeterminismTest, ResultsDoNotDependOnTheThreadCountOrTheRun) {
   const TraceResult again = trace(scene, 2500, 7, 2);
   expectSameResults(one, two);
   expectSameResults(two, again);
-  EXPECT_EQ(tracePatchesJson(scene, one).dump(), tracePatchesJson(scene, two).dump());
   EXPECT_EQ(one.paths, 2500u * scene.patches.size());
 }
 
@@ -131,8 +129,6 @@ TEST(PathTracerInputTest, OneSampleHasNoStandardError) {
   const TraceResult result = trace(testing::opposedSquaresScene(0.5), 1);
   EXPECT_TRUE(std::isfinite(result.patches[1].meanRadiosity[0]));
   EXPECT_TRUE(std::isnan(result.patches[1].standardError[0]));
-  EXPECT_TRUE(tracePatchesJson(testing::opposedSquaresScene(0.5), result)[1]["standard_error"][0]
-                  .is_null());
 }
 
 // An emission near the largest double makes the sample variance overflow.
@@ -145,22 +141,6 @@ TEST(PathTracerInputTest, ANonFiniteEstimateIsAComputationError) {
   } catch (const ComputationError& error) {
     EXPECT_NE(std::string(error.what()).find("patches[1] (receiver)"), std::string::npos)
         << error.what();
-  }
-}
-
-TEST(TraceReportTest, DecimalOptionsAreParsedStrictly) {
-  EXPECT_EQ(parseDecimalOption("18446744073709551615", "--seed", 0, ~std::uint64_t(0)),
-            ~std::uint64_t(0));
-  EXPECT_EQ(parseDecimalOption("42", "--samples", 1, 100), 42u);
-  for (const char* bad : {"", "-1", "+1", "1e3", " 1", "1 ", "abc", "18446744073709551616"}) {
-    EXPECT_THROW(parseDecimalOption(bad, "--seed", 0, ~std::uint64_t(0)), InputError) << bad;
-  }
-  EXPECT_THROW(parseDecimalOption("0", "--samples", 1, 100), InputError);
-  EXPECT_THROW(parseDecimalOption("101", "--samples", 1, 100), InputError);
-  try {
-    parseDecimalOption("x", "--samples", 1, 100);
-  } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("--samples"), std::string::npos);
   }
 }
 

@@ -6,7 +6,6 @@
 #include <random>
 #include <vector>
 
-#include "experiments/json_input.h"
 #include "kernel/occluder_scene.h"
 #include "quadrature/gauss_legendre.h"
 #include "reference/exact_gold.h"
@@ -133,36 +132,6 @@ TEST(SourceMoments, PolarMethodReproducesLambertsFormula) {
     const double lambert = moments.formFactor(x, normal, rings);
     EXPECT_NEAR(polar, lambert, 1e-12 * std::fabs(lambert) + 1e-15) << "point " << k;
   }
-}
-
-TEST(ExactGold, GenzMalikAtALooseToleranceDoesNotStopOnOneRegion) {
-  // A slats link of Figure 1's quick suite (tests/reference/slats_link.json: 14 slats between
-  // a small receiver and a source 2.9 sides away) on which Genz-Malik at 1e-4 met its
-  // tolerance with one region (17 points) and was wrong by 1.6e-3 of K[0][0] (against a 1e-8
-  // gold). The gold at 1e-4 must agree with the dense stratified gold (independent, random)
-  // within 4 of its standard errors plus the gold's own estimate, and with a 1e-7 gold of
-  // itself within 1e-4.
-  const LinkDescription description =
-      readLinkFile(std::filesystem::path(RADQUAD_TEST_DATA) / "slats_link.json");
-  const SceneLink sceneLink = buildSceneLink(description);
-  ExactGoldOptions loose;
-  loose.tolerance = 1e-4;
-  loose.outer = ExactOuterMethod::genzMalik;
-  const ExactGold gold = exactGold(sceneLink.link, 0, loose);
-  EXPECT_TRUE(gold.converged);
-  EXPECT_GE(gold.receiverPoints, loose.minEvaluations);
-  GoldOptions dense;
-  dense.method = GoldMethod::stratified;
-  dense.denseStrata = 16;
-  dense.denseReplicates = 8;
-  const GoldReference stratified = goldReference(sceneLink.link, 0, 5, dense);
-  ASSERT_EQ(stratified.method, "dense stratified");
-  EXPECT_LT(std::fabs(gold.formFactor - stratified.formFactor),
-            4.0 * stratified.formFactorError + gold.formFactorError);
-  ExactGoldOptions tight;
-  tight.tolerance = 1e-7;
-  const ExactGold reference = exactGold(sceneLink.link, 0, tight);
-  EXPECT_LT(std::fabs(gold.formFactor - reference.formFactor), 1e-4 * reference.formFactor);
 }
 
 TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
