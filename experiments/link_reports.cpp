@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "experiments/rule_file.h"
+#include "experiments/study/study_metrics.h"
 #include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "kernel/patch_intersection.h"
@@ -13,39 +14,28 @@
 namespace radquad {
 namespace {
 
-// Mean and sample standard deviation (denominator T-1) of T trials, entry by entry.
+// Mean and sample standard deviation (denominator T-1) of T trials, entry by entry, with the
+// study's accumulator (Welford's update); `first` receives trial 0 (seed S), the link's
+// reported coupling.
 nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
-                               const LinkReportOptions& options) {
+                               const LinkReportOptions& options, LinkIntegral& first) {
   CouplingAccumulator accumulator;
   LinkIntegral integral;
-  Eigen::MatrixXd sum, squares;
-  double formFactorSum = 0.0, formFactorSquares = 0.0;
+  EntrywiseMoments coupling, formFactor;
   for (int trial = 0; trial < options.trials; ++trial) {
     prepared.integrate(link, options.seed + std::uint64_t(trial), accumulator, integral,
                        std::size_t(trial));
-    if (trial == 0) {
-      sum = Eigen::MatrixXd::Zero(integral.coupling.rows(), integral.coupling.cols());
-      squares = sum;
-    }
-    sum += integral.coupling;
-    squares += integral.coupling.cwiseAbs2();
-    formFactorSum += integral.formFactor;
-    formFactorSquares += integral.formFactor * integral.formFactor;
+    if (trial == 0) first = integral;
+    coupling.add(integral.coupling);
+    formFactor.add(Eigen::MatrixXd::Constant(1, 1, integral.formFactor));
   }
-  const double count = options.trials;
-  const Eigen::MatrixXd mean = sum / count;
-  const double formFactorMean = formFactorSum / count;
-  const double denominator = count > 1 ? count - 1.0 : 1.0;
-  const Eigen::MatrixXd deviation =
-      ((squares - count * mean.cwiseAbs2()) / denominator).cwiseMax(0.0).cwiseSqrt();
-  const double formFactorDeviation = std::sqrt(
-      std::max(0.0, (formFactorSquares - count * formFactorMean * formFactorMean) / denominator));
   return {{"trials", options.trials},
           {"seeds", {options.seed, options.seed + std::uint64_t(options.trials) - 1}},
-          {"mean_form_factor", formFactorMean},
-          {"mean_coupling", matrixToJson(mean)},
+          {"mean_form_factor", formFactor.mean()(0, 0)},
+          {"mean_coupling", matrixToJson(coupling.mean())},
           {"standard_deviation",
-           {{"form_factor", formFactorDeviation}, {"coupling", matrixToJson(deviation)}}}};
+           {{"form_factor", formFactor.sampleDeviation()(0, 0)},
+            {"coupling", matrixToJson(coupling.sampleDeviation())}}}};
 }
 
 const char* goldErrorKind(const std::string& method) {
@@ -137,7 +127,15 @@ nlohmann::json linkReport(const LinkDescription& description,
   checkDrawCount(*rule, options.trials, "trials");
   const PreparedRule prepared(rule, options.degree);
   const SceneLink sceneLink = buildSceneLink(description);
-  const LinkIntegral integral = prepared.integrate(sceneLink.link, options.seed);
+  // Trials of a random rule: trial 0 (seed S) is the reported coupling, integrated once.
+  const bool trials = options.trials > 1 && prepared.rule().isRandom();
+  LinkIntegral integral;
+  nlohmann::json statistics;
+  if (trials) {
+    statistics = trialStatistics(prepared, sceneLink.link, options, integral);
+  } else {
+    integral = prepared.integrate(sceneLink.link, options.seed);
+  }
   if (!integral.coupling.allFinite() || !std::isfinite(integral.formFactor)) {
     throw ComputationError(where + ": rule " + prepared.rule().name() +
                            " gave a non-finite coupling");
@@ -160,8 +158,8 @@ nlohmann::json linkReport(const LinkDescription& description,
       nearnessRatio(description.receiver, description.source), integral.formFactor, "the rule");
   addWarnings(out, warnings, log);
   if (options.trials > 1) {
-    if (prepared.rule().isRandom()) {
-      out.update(trialStatistics(prepared, sceneLink.link, options));
+    if (trials) {
+      out.update(statistics);
     } else {
       if (log != nullptr) {
         *log << "radquad: warning: rule " << prepared.rule().name()

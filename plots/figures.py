@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Draws Figures 1 and 2 of the study from the JSON error tables (README.md, "The study").
+"""Draws Figures 1 and 2 of the study from the JSON error tables (docs/study.md).
 
 Figure 1: one bar per rule, the mean relative error of K[0][0] on partially visible links
 (constant bases), log scale, error bars one standard error of the mean over links.

@@ -1,6 +1,6 @@
 // `radquad baseline TABLE.json --out BASELINE.json [--rules A,B]` and `radquad check
 // TABLE.json --baseline BASELINE.json [--junit FILE.xml]`: regression bands of a study suite
-// and the check of a table against them (experiments/study/baseline.h; README.md,
+// and the check of a table against them (experiments/study/baseline.h; docs/cli.md,
 // "Regression bounds"). check exits 0 when every bound holds, 1 when one does not (each
 // failure named on stdout: rule, class, metric, value and band), 2 on bad input (a table of
 // another suite included).

@@ -1,6 +1,6 @@
 // `radquad study CONFIG.json --out FILE.json [--links-out FILE.jsonl] [--no-gold] [--rules A,B]
 // [--seed S] [--threads T] [--quiet]`: scores the config's rules on
-// its generated links and writes the error table of Figure 1 or 2 (README.md, "The study").
+// its generated links and writes the error table of Figure 1 or 2 (docs/study.md).
 #include <tbb/global_control.h>
 
 #include <filesystem>

@@ -207,9 +207,9 @@ nlohmann::json makeBaselineUnchecked(const nlohmann::json& table, const std::str
   const bool gold = scoredAgainstGold(*classes.begin()->second);
   nlohmann::json baseline = {
       {"schema", kSchema},
-      {"_doc", "Regression bands of a study suite (radquad check; README.md, \"Regression bounds\"): "
-               "per rule, class and metric, [low, high] = value -+ (relative margin x value + "
-               "absolute margin)."},
+      {"_doc", "Regression bands of a study suite (radquad check; docs/cli.md, "
+               "\"Regression bounds\"): per rule, class and metric, [low, high] = value -+ "
+               "(relative margin x value + absolute margin)."},
       {"suite", suiteOf(table)},
       {"links", linksOf(table, tableName)},
       {"scored_against", gold ? "gold" : "the paper's reference"},

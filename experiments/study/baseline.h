@@ -1,5 +1,5 @@
-// Regression bounds on study tables: `radquad baseline` and `radquad check` (README.md, "Regression
-// bounds"), for the project's own CI and for anyone's rule or table.
+// Regression bounds on study tables: `radquad baseline` and `radquad check` (docs/cli.md,
+// "Regression bounds"), for the project's own CI and for anyone's rule or table.
 //
 // A baseline records, for one suite (the table's options but for its rule list and the
 // config's path, and the candidates it scored), a band [low, high] around every scored value of every rule: per class
@@ -13,9 +13,9 @@
 // whatever the thread count; what can move a value on another machine is rounding (a
 // visibility ray grazing an edge, a last bit in a sum), far below the 2% margin. A rule whose
 // weights are biased by 5%, or one of whose points is moved, moves its scores by far more
-// (README.md gives the measurements), and so does any change of the rule's code: the band is
-// two-sided, so an unexpected improvement is reported too (re-baseline the rule with
-// `radquad baseline --rules NAME` once it is understood).
+// (docs/cli.md, "Regression bounds", gives the measurements), and so does any change of the
+// rule's code: the band is two-sided, so an unexpected improvement is reported too
+// (re-baseline the rule with `radquad baseline --rules NAME` once it is understood).
 #pragma once
 
 #include <nlohmann/json.hpp>

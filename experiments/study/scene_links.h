@@ -1,4 +1,4 @@
-// Scene-derived links for the study (README.md, "The study"): the links a hierarchical solve
+// Scene-derived links for the study (docs/study.md): the links a hierarchical solve
 // of a scene ends with, as the report's Figure 2 measured them ("the links in a scene that
 // used a quadratic multiwavelet basis"), rather than synthetic pairs.
 //

@@ -105,12 +105,12 @@ struct StudyRun {
 // Throws InputError when a class cannot be filled within max_candidates_per_link.
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options);
 
-// The error table (the JSON contract of README.md, "The study"); the commit and the elapsed
+// The error table (the JSON contract of docs/cli.md, "The tables"); the commit and the elapsed
 // time go to the run record beside it (experiments/study/study_output.h).
 nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options,
                           const StudyRun& run);
 
-// The per-link table: one JSON object per line for every scored link (README.md, "Per-link
+// The per-link table: one JSON object per line for every scored link (docs/cli.md, "Per-link
 // tables"); needs a run with StudyOptions::keepDetails.
 std::string linkTableLines(const StudyConfig& config, const StudyRun& run);
 

@@ -1,4 +1,4 @@
-// The error tables of Figures 1 and 2 (field meanings: README.md, "The study").
+// The error tables of Figures 1 and 2 (field meanings: docs/cli.md, "The tables").
 #include <cmath>
 #include <map>
 #include <stdexcept>

@@ -19,7 +19,8 @@ command line's message; a computation that fails raises ArithmeticError. Python 
 checked as rule files are (finite, in [0, 1], weights summing to 1, the declared degree) and
 give the same numbers as the same rule in a `File:` JSON file. A random rule is a callable
 f(trial) -> Rule (or Rule.draws([...])): trial t of a study, or of integrate(..., trials=T),
-uses f(t) on every link, as a rule file's listed draws are. README.md, "Python", says more.
+uses f(t) on every link, as a rule file's listed draws are. docs/cli.md, "Python", and
+docs/adding-a-rule.md say more.
 """
 import json
 import os

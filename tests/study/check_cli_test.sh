@@ -1,5 +1,5 @@
 #!/bin/bash
-# Regression bounds in CI (README.md, "Regression bounds"): every registered rule, scored on
+# Regression bounds in CI (docs/cli.md, "Regression bounds"): every registered rule, scored on
 # the four quick suites, lies inside the committed bands of tests/baselines/quick/ (radquad
 # check exits 0); a 5% bias in the weights, or one point moved by 0.05, of FullGauss,
 # LinSrcGauss, Stroud65 or HierStroud makes the check fail (exit 1, naming the rule); bad
