@@ -8,6 +8,7 @@
 #include <embree3/rtcore.h>
 
 #include "bench/bench_links.h"
+#include "kernel/embree_device.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
 
@@ -92,7 +93,7 @@ void BM_RawEmbreeOcclusion(benchmark::State& state) {
         for (std::size_t lane = 0; lane < 16; ++lane) {
           valid[lane] = p * 16 + lane < batch.size() ? -1 : 0;
         }
-        rtcOccluded16(valid, scene->handle(), &context, &batch.packets()[p]);
+        rtcOccluded16(valid, scene->handle(), &context, &embreePackets(batch)[p]);
       }
       rays += batch.size();
     }

@@ -85,7 +85,7 @@ void rawRays(benchmark::State& state, Occluders which) {
   }
   for (auto _ : state) {
     for (std::size_t p = 0; p < segments.packetCount(); ++p) {
-      RTCRay16& packet = segments.packets()[p];
+      SegmentPacket& packet = segments.packets()[p];
       for (int lane = 0; lane < 16; ++lane) packet.tfar[lane] = 1.0f - kSegmentEpsilon;
     }
     scene->trace(segments);

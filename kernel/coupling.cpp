@@ -41,7 +41,7 @@ double unoccludedKernel(const Patch& receiver, const Eigen::Vector3d& x, const P
 }
 
 void CouplingAccumulator::stageRays(std::size_t count) {
-  // Whole packets: traceStagedRays moves 16 lanes at a time.
+  // Whole packets: SegmentBatch::assignColumns copies 16 lanes at a time.
   const std::size_t lanes = (count + 15) / 16 * 16;
   for (auto* column : {&rayOriginX_, &rayOriginY_, &rayOriginZ_, &rayDirectionX_, &rayDirectionY_,
                        &rayDirectionZ_}) {
@@ -51,68 +51,16 @@ void CouplingAccumulator::stageRays(std::size_t count) {
 
 void CouplingAccumulator::traceStagedRays(const Link& link, std::size_t count,
                                           LinkIntegral& result) {
-  // Fixed 16-lane moves into the packets from the staging columns (padded to whole packets by
-  // stageRays; lanes past `count` are traced by no one), and tfar reset: the only field Embree
-  // writes. The other fields keep the values SegmentBatch gave
-  // them.
-  segments_.resize(count);
-  RTCRay16* __restrict packets = segments_.packets();
-  const std::size_t packetCount = segments_.packetCount();
-  constexpr std::size_t kBytes = 16 * sizeof(float);
-  for (std::size_t p = 0; p < packetCount; ++p) {
-    RTCRay16& packet = packets[p];
-    const std::size_t start = p * 16;
-    std::memcpy(packet.org_x, rayOriginX_.data() + start, kBytes);
-    std::memcpy(packet.org_y, rayOriginY_.data() + start, kBytes);
-    std::memcpy(packet.org_z, rayOriginZ_.data() + start, kBytes);
-    std::memcpy(packet.dir_x, rayDirectionX_.data() + start, kBytes);
-    std::memcpy(packet.dir_y, rayDirectionY_.data() + start, kBytes);
-    std::memcpy(packet.dir_z, rayDirectionZ_.data() + start, kBytes);
-    for (int lane = 0; lane < 16; ++lane) packet.tfar[lane] = 1.0f - kSegmentEpsilon;
-  }
-  link.occluders->trace(segments_);
-  // Embree sets tfar to -inf in the lanes it finds blocked. Eight rays at a time: the far
-  // ends widened to double select the kernel values, and the comparison masks (-1 per blocked
-  // ray) are summed; the last count % 8 rays one by one (the kernel has only `count` values).
-  using Floats8 = simd::Floats8;
-  using Counts8 = simd::Int64s8;
-  Counts8 negativeBlocked = {};
-  double* __restrict kernel = kernel_.data();
-  const std::size_t grouped = count - count % 8;
-  for (std::size_t k = 0; k < grouped; k += 8) {
-    Floats8 farFloat;
-    std::memcpy(&farFloat, packets[k / 16].tfar + k % 16, sizeof farFloat);
-    const Lanes8 far = __builtin_convertvector(farFloat, Lanes8);
-    Lanes8 kept;
-    std::memcpy(&kept, kernel + k, sizeof kept);
-    const Counts8 blockedLanes = ~(far >= Lanes8{});  // as !(far >= 0), NaN blocked too
-    kept = blockedLanes ? Lanes8{} : kept;
-    std::memcpy(kernel + k, &kept, sizeof kept);
-    negativeBlocked += blockedLanes;
-  }
-  std::int64_t blocked = 0;
-  for (int lane = 0; lane < 8; ++lane) blocked -= negativeBlocked[lane];
-  for (std::size_t k = grouped; k < count; ++k) {
-    const bool visible = segments_.visible(k);
-    kernel[k] = visible ? kernel[k] : 0.0;
-    blocked += visible ? 0 : 1;
-  }
+  segments_.assignColumns(count, rayOriginX_.data(), rayOriginY_.data(), rayOriginZ_.data(),
+                          rayDirectionX_.data(), rayDirectionY_.data(), rayDirectionZ_.data());
   result.raysCast = count;
-  result.raysBlocked = blocked;
+  result.raysBlocked = link.occluders->traceMasking(segments_, kernel_.data());
 }
 
 void CouplingAccumulator::castRays(const Link& link, std::vector<double>& kernel,
                                    LinkIntegral& result) {
-  link.occluders->trace(segments_);
-  std::uint64_t blocked = 0;
-  for (std::size_t r = 0; r < rayPairs_.size(); ++r) {
-    if (!segments_.visible(r)) {
-      kernel[rayPairs_[r]] = 0.0;
-      ++blocked;
-    }
-  }
-  result.raysCast = rayPairs_.size();
-  result.raysBlocked = blocked;
+  result.raysCast = segments_.size();
+  result.raysBlocked = link.occluders->traceMasking(segments_, rayPairs_.data(), kernel.data());
 }
 
 namespace {

@@ -78,6 +78,8 @@ class CouplingAccumulator {
   void streamed(const Link& link, const PointStream& points, int degree, LinkIntegral& result);
 
  private:
+  // Traces segments_ (segment r belongs to kernel value rayPairs_[r]) and zeroes the kernel
+  // where they are blocked.
   void castRays(const Link& link, std::vector<double>& kernel, LinkIntegral& result);
   // Sizes the staging columns for `count` rays; traceStagedRays traces them (ray k belongs to
   // kernel value k) and zeroes the kernel where they are blocked.

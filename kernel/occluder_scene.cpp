@@ -1,13 +1,36 @@
 #include "kernel/occluder_scene.h"
 
-#include "kernel/input_error.h"
-
 #include <algorithm>
+#include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+
+#include "kernel/embree_device.h"
+#include "kernel/input_error.h"
+#include "kernel/simd_lanes.h"
+
+// SegmentPacket is RTCRay16, field for field: batches are traced in place.
+static_assert(sizeof(radquad::SegmentPacket) == sizeof(RTCRay16));
+static_assert(alignof(radquad::SegmentPacket) == alignof(RTCRay16));
+#define RADQUAD_SAME_OFFSET(field) \
+  static_assert(offsetof(radquad::SegmentPacket, field) == offsetof(RTCRay16, field))
+RADQUAD_SAME_OFFSET(org_x);
+RADQUAD_SAME_OFFSET(org_y);
+RADQUAD_SAME_OFFSET(org_z);
+RADQUAD_SAME_OFFSET(tnear);
+RADQUAD_SAME_OFFSET(dir_x);
+RADQUAD_SAME_OFFSET(dir_y);
+RADQUAD_SAME_OFFSET(dir_z);
+RADQUAD_SAME_OFFSET(time);
+RADQUAD_SAME_OFFSET(tfar);
+RADQUAD_SAME_OFFSET(mask);
+RADQUAD_SAME_OFFSET(id);
+RADQUAD_SAME_OFFSET(flags);
+#undef RADQUAD_SAME_OFFSET
 
 namespace radquad {
 namespace {
@@ -53,7 +76,7 @@ RTCDevice embreeDevice() {
 void SegmentBatch::resize(std::size_t count) {
   const std::size_t packets = (count + 15) / 16;
   if (packets > packets_.size()) {
-    RTCRay16 fresh;
+    SegmentPacket fresh;
     for (int lane = 0; lane < 16; ++lane) {
       fresh.org_x[lane] = fresh.org_y[lane] = fresh.org_z[lane] = 0.0f;
       fresh.dir_x[lane] = fresh.dir_y[lane] = fresh.dir_z[lane] = 0.0f;
@@ -67,6 +90,28 @@ void SegmentBatch::resize(std::size_t count) {
     packets_.resize(packets, fresh);
   }
   count_ = count;
+}
+
+void SegmentBatch::assignColumns(std::size_t count, const float* originX, const float* originY,
+                                 const float* originZ, const float* directionX,
+                                 const float* directionY, const float* directionZ) {
+  // Fixed 16-lane copies (the columns hold whole packets; lanes past `count` are traced by
+  // no one), and tfar reset: the only field Embree writes. The other fields keep the values
+  // resize() gave them.
+  resize(count);
+  SegmentPacket* __restrict packets = packets_.data();
+  constexpr std::size_t kBytes = 16 * sizeof(float);
+  for (std::size_t p = 0; p < packetCount(); ++p) {
+    SegmentPacket& packet = packets[p];
+    const std::size_t start = p * 16;
+    std::memcpy(packet.org_x, originX + start, kBytes);
+    std::memcpy(packet.org_y, originY + start, kBytes);
+    std::memcpy(packet.org_z, originZ + start, kBytes);
+    std::memcpy(packet.dir_x, directionX + start, kBytes);
+    std::memcpy(packet.dir_y, directionY + start, kBytes);
+    std::memcpy(packet.dir_z, directionZ + start, kBytes);
+    for (int lane = 0; lane < 16; ++lane) packet.tfar[lane] = 1.0f - kSegmentEpsilon;
+  }
 }
 
 void SegmentBatch::push(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
@@ -202,13 +247,59 @@ void OccluderScene::trace(SegmentBatch& segments) const {
                                                     -1, -1, -1, -1, -1, -1, -1, -1};
   const std::size_t count = segments.size();
   const std::size_t full = count / 16;
-  RTCRay16* packets = segments.packets();
+  RTCRay16* packets = embreePackets(segments);
   for (std::size_t p = 0; p < full; ++p) rtcOccluded16(kAllLanes, scene_, &context, &packets[p]);
   if (count % 16 != 0) {
     alignas(64) int valid[16];
     for (std::size_t lane = 0; lane < 16; ++lane) valid[lane] = lane < count % 16 ? -1 : 0;
     rtcOccluded16(valid, scene_, &context, &packets[full]);
   }
+}
+
+std::uint64_t OccluderScene::traceMasking(SegmentBatch& segments, double* values) const {
+  trace(segments);
+  // Embree sets tfar to -inf in the lanes it finds blocked. Eight segments at a time: the far
+  // ends widened to double select the values, and the comparison masks (-1 per blocked
+  // segment) are summed; the last size % 8 one by one (there are only `size` values).
+  using Doubles8 = simd::Doubles8;
+  using Counts8 = simd::Int64s8;
+  const std::size_t count = segments.size();
+  const SegmentPacket* packets = segments.packets();
+  Counts8 negativeBlocked = {};
+  double* __restrict kept = values;
+  const std::size_t grouped = count - count % 8;
+  for (std::size_t k = 0; k < grouped; k += 8) {
+    simd::Floats8 farFloat;
+    std::memcpy(&farFloat, packets[k / 16].tfar + k % 16, sizeof farFloat);
+    const Doubles8 far = __builtin_convertvector(farFloat, Doubles8);
+    Doubles8 lanes;
+    std::memcpy(&lanes, kept + k, sizeof lanes);
+    const Counts8 blockedLanes = ~(far >= Doubles8{});  // as !(far >= 0), NaN blocked too
+    lanes = blockedLanes ? Doubles8{} : lanes;
+    std::memcpy(kept + k, &lanes, sizeof lanes);
+    negativeBlocked += blockedLanes;
+  }
+  std::int64_t blocked = 0;
+  for (int lane = 0; lane < 8; ++lane) blocked -= negativeBlocked[lane];
+  for (std::size_t k = grouped; k < count; ++k) {
+    const bool visible = segments.visible(k);
+    kept[k] = visible ? kept[k] : 0.0;
+    blocked += visible ? 0 : 1;
+  }
+  return std::uint64_t(blocked);
+}
+
+std::uint64_t OccluderScene::traceMasking(SegmentBatch& segments, const std::uint32_t* owner,
+                                          double* values) const {
+  trace(segments);
+  std::uint64_t blocked = 0;
+  for (std::size_t r = 0; r < segments.size(); ++r) {
+    if (!segments.visible(r)) {
+      values[owner[r]] = 0.0;
+      ++blocked;
+    }
+  }
+  return blocked;
 }
 
 void OccluderScene::testSegments(const SegmentBatch& segments, std::uint8_t* visible) const {

@@ -3,9 +3,12 @@
 // A link's own two patches are never part of its occluder scene; segments are also
 // shortened by a relative epsilon at both ends so that geometry touching an end point
 // (a block standing on a floor) does not block it.
+//
+// The one place where rays are staged, traced and applied: every coupling path stages its
+// segments in a SegmentBatch, and OccluderScene::traceMasking traces them and zeroes the
+// kernel values of the blocked ones. Embree's own types stay in occluder_scene.cpp (and
+// kernel/embree_device.h, for the few .cpp files that build Embree scenes themselves).
 #pragma once
-
-#include <embree3/rtcore.h>
 
 #include <Eigen/Core>
 #include <array>
@@ -16,13 +19,26 @@
 
 #include "kernel/patch.h"
 
+// Embree's scene type, declared only (its header stays in the .cpp files).
+struct RTCSceneTy;
+
 namespace radquad {
 
 // Segments are tested for t in [kSegmentEpsilon, 1 - kSegmentEpsilon] of origin + t direction.
 inline constexpr float kSegmentEpsilon = 1e-5f;
 
-// A batch of segments stored directly as Embree 16-wide ray packets, so they are traced in
-// place with no copy: segment k lives in lane k % 16 of packet k / 16.
+// Sixteen segments in the layout of Embree's 16-wide ray packet (RTCRay16; occluder_scene.cpp
+// checks every field's offset), so that a batch is traced in place with no copy. Embree
+// writes only tfar: -inf in the lanes it finds blocked.
+struct alignas(64) SegmentPacket {
+  float org_x[16], org_y[16], org_z[16], tnear[16];
+  float dir_x[16], dir_y[16], dir_z[16], time[16];
+  float tfar[16];
+  std::uint32_t mask[16], id[16], flags[16];
+};
+
+// A batch of segments stored as 16-wide packets: segment k lives in lane k % 16 of packet
+// k / 16.
 class SegmentBatch {
  public:
   std::size_t size() const { return count_; }
@@ -31,7 +47,7 @@ class SegmentBatch {
   void resize(std::size_t count);
   void push(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction);
   void set(std::size_t k, double ox, double oy, double oz, double dx, double dy, double dz) {
-    RTCRay16& packet = packets_[k >> 4];
+    SegmentPacket& packet = packets_[k >> 4];
     const std::size_t lane = k & 15;
     packet.org_x[lane] = float(ox);
     packet.org_y[lane] = float(oy);
@@ -41,15 +57,34 @@ class SegmentBatch {
     packet.dir_z[lane] = float(dz);
     packet.tfar[lane] = 1.0f - kSegmentEpsilon;  // Embree sets it to -inf when blocked
   }
+  // Copies segment `from` to slot `to` (to <= from: compacting a batch in order).
+  void move(std::size_t from, std::size_t to) {
+    const SegmentPacket& source = packets_[from >> 4];
+    SegmentPacket& target = packets_[to >> 4];
+    const std::size_t f = from & 15, t = to & 15;
+    target.org_x[t] = source.org_x[f];
+    target.org_y[t] = source.org_y[f];
+    target.org_z[t] = source.org_z[f];
+    target.dir_x[t] = source.dir_x[f];
+    target.dir_y[t] = source.dir_y[f];
+    target.dir_z[t] = source.dir_z[f];
+    target.tfar[t] = source.tfar[f];
+  }
+  // Sets the batch to `count` segments from float columns (origin, direction); each column
+  // must hold whole packets ((count + 15) / 16 * 16 entries): they are copied 16 at a time.
+  void assignColumns(std::size_t count, const float* originX, const float* originY,
+                     const float* originZ, const float* directionX, const float* directionY,
+                     const float* directionZ);
   // After OccluderScene::trace: whether segment k was unobstructed.
   bool visible(std::size_t k) const { return packets_[k >> 4].tfar[k & 15] >= 0.0f; }
 
   std::size_t packetCount() const { return (count_ + 15) / 16; }
-  RTCRay16* packets() { return packets_.data(); }
-  const RTCRay16& packet(std::size_t p) const { return packets_[p]; }
+  // The packets, for code that stages segments itself (the streamed coupling path writes
+  // them as it places its points, as set() does).
+  SegmentPacket* packets() { return packets_.data(); }
 
  private:
-  std::vector<RTCRay16> packets_;
+  std::vector<SegmentPacket> packets_;
   std::size_t count_ = 0;
 };
 
@@ -76,11 +111,18 @@ class OccluderScene {
   // four corners, a triangle's three), in the order added: the geometry that exact
   // visibility (reference/exact_visibility.h) projects, beside the float copy Embree traces.
   const std::vector<std::vector<Eigen::Vector3d>>& polygons() const { return polygons_; }
-  RTCScene handle() const { return scene_; }
+  // Embree's scene (RTCScene), for kernel/embree_device.h's users.
+  RTCSceneTy* handle() const { return scene_; }
 
   // Traces every segment of the batch in place (rtcOccluded16 on its packets); afterwards
   // segments.visible(k) tells whether segment k is unobstructed. Thread-safe after commit().
   void trace(SegmentBatch& segments) const;
+  // Traces the batch and zeroes values[k] for every blocked segment k (a NaN far end counts
+  // as blocked); returns how many were blocked.
+  std::uint64_t traceMasking(SegmentBatch& segments, double* values) const;
+  // The same where segment r belongs to values[owner[r]].
+  std::uint64_t traceMasking(SegmentBatch& segments, const std::uint32_t* owner,
+                             double* values) const;
   // The same, writing 1 (unobstructed) or 0 (blocked) to visible[k].
   void testSegments(const SegmentBatch& segments, std::uint8_t* visible) const;
   bool segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
@@ -90,24 +132,11 @@ class OccluderScene {
   int closestHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double& t) const;
 
  private:
-  RTCScene scene_ = nullptr;
+  RTCSceneTy* scene_ = nullptr;
   std::size_t geometryCount_ = 0;
   std::size_t primitiveCount_ = 0;
   bool committed_ = false;
   std::vector<std::vector<Eigen::Vector3d>> polygons_;
 };
-
-// The process-wide Embree device (created on first use).
-RTCDevice embreeDevice();
-
-// Throws ComputationError naming `step` and Embree's message when the last Embree call on
-// this thread failed (out of memory, an invalid argument, a failed build); Embree reports
-// errors through a callback and a per-thread error code, never by exception.
-void checkEmbree(const char* step);
-
-// A committed Embree quad geometry of one parallelogram (corners o, o+a, o+a+b, o+b in float),
-// not yet attached to a scene: the one way patches become Embree geometry. Throws
-// ComputationError when Embree fails (checkEmbree).
-RTCGeometry newParallelogramGeometry(RTCDevice device, const Patch& patch);
 
 }  // namespace radquad

@@ -1,7 +1,7 @@
 // The streamed coupling path (kernel/coupling.h): points of equal weight come from a
 // PointStream block by block, and each block of 256 goes through one fused pass: draw,
-// place on both patches, evaluate G, stage and trace its rays straight into the Embree
-// packets, drop the points whose G V is zero, contract (kernel/block_contraction.h).
+// place on both patches, evaluate G, stage its rays straight into the segment packets and
+// trace them (OccluderScene::traceMasking), drop the points whose G V is zero, contract (kernel/block_contraction.h).
 // The sum, the rays and the ray counts are those of scattered() on the same points; only
 // the order of the additions differs (tests/kernel/coupling_paths_test.cpp).
 #include <algorithm>
@@ -34,7 +34,7 @@ enum Column { kS, kT, kU, kV, kKernel, kColumns };
 template <bool kStage>
 std::size_t placeAndEvaluate(const PatchFrame receiverFrame, const PatchFrame sourceFrame,
                              std::size_t rows, double* const (&column)[kColumns],
-                             RTCRay16* packets) {
+                             SegmentPacket* packets) {
   const double* __restrict ps = column[kS];
   const double* __restrict pt = column[kT];
   const double* __restrict pu = column[kU];
@@ -43,7 +43,7 @@ std::size_t placeAndEvaluate(const PatchFrame receiverFrame, const PatchFrame so
   std::size_t positive = 0;
   for (std::size_t first = 0; first < rows; first += 16) {
     const std::size_t lanes = std::min<std::size_t>(16, rows - first);
-    RTCRay16* packet = kStage ? packets + first / 16 : nullptr;
+    SegmentPacket* packet = kStage ? packets + first / 16 : nullptr;
     // The columns never overlap (GCC does not see it through the restrict locals).
 #pragma GCC ivdep
     for (std::size_t lane = 0; lane < lanes; ++lane) {
@@ -67,20 +67,6 @@ std::size_t placeAndEvaluate(const PatchFrame receiverFrame, const PatchFrame so
     }
   }
   return positive;
-}
-
-// Moves segment `from` of the batch to slot `to` (to <= from).
-inline void moveSegment(RTCRay16* packets, std::size_t from, std::size_t to) {
-  const RTCRay16& source = packets[from / 16];
-  RTCRay16& target = packets[to / 16];
-  const std::size_t f = from % 16, t = to % 16;
-  target.org_x[t] = source.org_x[f];
-  target.org_y[t] = source.org_y[f];
-  target.org_z[t] = source.org_z[f];
-  target.dir_x[t] = source.dir_x[f];
-  target.dir_y[t] = source.dir_y[f];
-  target.dir_z[t] = source.dir_z[f];
-  target.tfar[t] = source.tfar[f];
 }
 
 // Moves the points whose kernel is nonzero to the front of the columns s, t, u, v, g, in
@@ -148,32 +134,17 @@ void CouplingAccumulator::streamed(const Link& link, const PointStream& points, 
       // One ray per point whose unoccluded kernel is positive, already in the packets.
       std::size_t rays = rows;
       if (positive == rows) {
-        link.occluders->trace(segments_);
-        for (std::size_t p = 0; p < segments_.packetCount(); ++p) {
-          const RTCRay16& packet = segments_.packet(p);
-          const std::size_t first = 16 * p;
-          const std::size_t lanes = std::min<std::size_t>(16, rows - first);
-          for (std::size_t lane = 0; lane < lanes; ++lane) {
-            const bool visible = packet.tfar[lane] >= 0.0f;
-            g[first + lane] = visible ? g[first + lane] : 0.0;
-            blocked += visible ? 0 : 1;
-          }
-        }
+        blocked += link.occluders->traceMasking(segments_, g);
       } else {
         // Keep only the rays of positive kernels, in order (as scattered() casts them).
         rays = 0;
         for (std::size_t k = 0; k < rows; ++k) {
           if (!detail::needsRay(g[k])) continue;
-          moveSegment(segments_.packets(), k, rays);
+          segments_.move(k, rays);
           rayPairs_[rays++] = std::uint32_t(k);
         }
         segments_.resize(rays);
-        link.occluders->trace(segments_);
-        for (std::size_t ray = 0; ray < rays; ++ray) {
-          if (segments_.visible(ray)) continue;
-          g[rayPairs_[ray]] = 0.0;
-          ++blocked;
-        }
+        blocked += link.occluders->traceMasking(segments_, rayPairs_.data(), g);
       }
       cast += rays;
     }

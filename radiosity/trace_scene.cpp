@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "kernel/occluder_scene.h"  // embreeDevice(), checkEmbree(), newParallelogramGeometry()
+#include "kernel/embree_device.h"  // embreeDevice(), checkEmbree(), newParallelogramGeometry()
 
 namespace radquad {
 namespace {

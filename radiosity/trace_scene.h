@@ -11,12 +11,13 @@
 // radiosity/visibility.h); only the process-wide Embree device is common.
 #pragma once
 
-#include <embree3/rtcore.h>
-
 #include <Eigen/Core>
 #include <cstdint>
 
 #include "radiosity/scene.h"
+
+// Embree's scene type, declared only (its header stays in trace_scene.cpp).
+struct RTCSceneTy;
 
 namespace radquad {
 
@@ -40,7 +41,7 @@ class TraceScene {
                     int ignoreB) const;
 
  private:
-  RTCScene scene_ = nullptr;
+  RTCSceneTy* scene_ = nullptr;
 };
 
 }  // namespace radquad
