@@ -50,7 +50,7 @@ struct KindLinks {
 KindLinks partialLinks(OccluderKind kind) {
   KindLinks out;
   const GeometryRanges ranges;
-  const PreparedRule probe(std::make_shared<GaussProductRule>(std::array{6, 6, 6, 6}), 0);
+  const PreparedRule probe(std::make_shared<GaussProductRule>(GaussPointCounts{6, 6, 6, 6}), 0);
   CouplingAccumulator accumulator;
   for (std::uint64_t i = 0; out.generated.size() < kLinksPerKind && i < 100000; ++i) {
     GeneratedLink generated = generateLink(ranges, StudyClass::partial, deriveSeed(1, {1, i, 0}));

@@ -32,7 +32,7 @@ int pointsForAxis(const double* orderMagnitudes, int orders, double errThres) {
   return highest + 1;
 }
 
-GaussRuleChoice chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input) {
+GaussPointCounts chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input) {
   RADQUAD_REQUIRE(input.degree >= 0 && input.degree <= kMaxAdaptiveDegree);
   RADQUAD_REQUIRE(input.magnitudes != nullptr);
   double alongU[kMaxAdaptiveDegree + 1], alongV[kMaxAdaptiveDegree + 1];
@@ -42,8 +42,8 @@ GaussRuleChoice chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input) {
           pointsForAxis(alongV, full, input.errThres)};
 }
 
-GaussRuleChoice chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator) {
-  GaussRuleChoice rule = chooseGaussRulesNoVisibility(input);
+GaussPointCounts chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator) {
+  GaussPointCounts rule = chooseGaussRulesNoVisibility(input);
   if (!input.partiallyOccluded) return rule;
   // "RandomlyIncreaseAnAxis(Src)": only an axis below the full d+1 points can grow.
   const int full = input.degree + 1;

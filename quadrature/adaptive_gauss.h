@@ -19,12 +19,11 @@
 #include <array>
 #include <cstdint>
 
+#include "quadrature/gauss_legendre.h"
+
 namespace radquad {
 
 class PhiloxStream;
-
-// Gauss points per axis {Rs, Rt, Su, Sv}: receiver u, receiver v, source u, source v.
-using GaussRuleChoice = std::array<int, 4>;
 
 // The highest basis degree handled (8-point rules at most, as radiosity/gauss_tables.h).
 inline constexpr int kMaxAdaptiveDegree = 7;
@@ -47,12 +46,12 @@ void axisMagnitudes(int degree, const double* magnitudes, double* alongU, double
 int pointsForAxis(const double* orderMagnitudes, int orders, double errThres);
 
 // Figure 4 without its last step (the variant `adaptive-novis`).
-GaussRuleChoice chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input);
+GaussPointCounts chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input);
 
 // Figure 4: as above, then, for a partially occluded link, one source axis with fewer than
 // d+1 points gets one more; when both qualify, `generator` picks one (one draw of
 // generator.bounded(2): 0 is u, 1 is v). No draw is made otherwise.
-GaussRuleChoice chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator);
+GaussPointCounts chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator);
 
 // The seed of a link's own generator, a pure function of the link's identity (its receiver
 // and source element ids), so that the choice does not depend on the order links are
@@ -61,7 +60,7 @@ GaussRuleChoice chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& 
 std::uint64_t linkSeed(std::uint64_t baseSeed, std::uint32_t receiver, std::uint32_t source);
 
 // The kernel evaluations of one product rule: Rs Rt Su Sv.
-inline std::uint64_t ruleEvaluations(const GaussRuleChoice& rule) {
+inline std::uint64_t ruleEvaluations(const GaussPointCounts& rule) {
   return std::uint64_t(rule[0]) * std::uint64_t(rule[1]) * std::uint64_t(rule[2]) *
          std::uint64_t(rule[3]);
 }

@@ -81,4 +81,17 @@ const GaussLegendreRule& gaussLegendreUnit(int n) {
   return cache[n];
 }
 
+PatchSamples gaussProductSamples(int alongU, int alongV) {
+  const GaussLegendreRule& ruleU = gaussLegendreUnit(alongU);
+  const GaussLegendreRule& ruleV = gaussLegendreUnit(alongV);
+  PatchSamples samples;
+  for (int i = 0; i < alongU; ++i) {
+    for (int j = 0; j < alongV; ++j) {
+      samples.push(ruleU.nodes[std::size_t(i)], ruleV.nodes[std::size_t(j)],
+                   ruleU.weights[std::size_t(i)] * ruleV.weights[std::size_t(j)]);
+    }
+  }
+  return samples;
+}
+
 }  // namespace radquad

@@ -28,15 +28,15 @@ const std::vector<NamedRule>& namedCatalogue() {
   static const std::vector<NamedRule> catalogue = {
       {"FullGauss",
        [] {
-         return std::make_shared<GaussProductRule>(std::array{3, 3, 3, 3}, "FullGauss");
+         return std::make_shared<GaussProductRule>(GaussPointCounts{3, 3, 3, 3}, "FullGauss");
        }},
       {"LinSrcGauss",
        [] {
-         return std::make_shared<GaussProductRule>(std::array{3, 3, 2, 2}, "LinSrcGauss");
+         return std::make_shared<GaussProductRule>(GaussPointCounts{3, 3, 2, 2}, "LinSrcGauss");
        }},
       {"ConstSrcGauss",
        [] {
-         return std::make_shared<GaussProductRule>(std::array{3, 3, 1, 1}, "ConstSrcGauss");
+         return std::make_shared<GaussProductRule>(GaussPointCounts{3, 3, 1, 1}, "ConstSrcGauss");
        }},
       {"Stroud65", [] { return StroudRule::cn57(); }},
       {"HierStroud", [] { return StroudRule::hierarchicalCn31(); }},

@@ -1,7 +1,6 @@
 #include "radiosity/gauss_tables.h"
+
 #include "kernel/input_error.h"
-
-
 #include "quadrature/gauss_legendre.h"
 
 namespace radquad {
@@ -11,14 +10,7 @@ GaussTables::GaussTables(int degree) {
   for (int nu = 1; nu <= kMaxPointsPerAxis; ++nu) {
     for (int nv = 1; nv <= kMaxPointsPerAxis; ++nv) {
       GaussSide& side = sides_[std::size_t((nu - 1) * kMaxPointsPerAxis + (nv - 1))];
-      const GaussLegendreRule& gu = gaussLegendreUnit(nu);
-      const GaussLegendreRule& gv = gaussLegendreUnit(nv);
-      for (int i = 0; i < nu; ++i) {
-        for (int j = 0; j < nv; ++j) {
-          side.samples.push(gu.nodes[std::size_t(i)], gv.nodes[std::size_t(j)],
-                            gu.weights[std::size_t(i)] * gv.weights[std::size_t(j)]);
-        }
-      }
+      side.samples = gaussProductSamples(nu, nv);
       side.basis = makeWeightedBasisTable(side.samples, degree);
     }
   }

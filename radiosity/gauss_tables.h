@@ -1,5 +1,5 @@
 // The two halves of Gauss-Legendre product rules on an element's parameter square,
-// n_u x n_v points (Abramowitz and Stegun 1964, 25.4.29, through gaussLegendreUnit), with
+// n_u x n_v points (quadrature's gaussProductSamples, the Gauss rules' own point sets), with
 // their weighted basis tables for one degree, built once for every n_u, n_v in
 // 1..kMaxPointsPerAxis. A link's rule {Rs, Rt, Su, Sv} uses side(Rs, Rt) on the receiver and
 // side(Su, Sv) on the source.

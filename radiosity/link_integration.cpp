@@ -81,7 +81,7 @@ bool elementsNear(const Patch& a, const Patch& b) {
   return distance < kNearFactor * (radiusA + radiusB) || elementsTouch(a, b);
 }
 
-LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const std::array<int, 4>& rule,
+LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const GaussPointCounts& rule,
                                                 const GaussTables& tables, int depth,
                                                 Eigen::Map<Eigen::MatrixXd> coupling) {
   LinkIntegrationCounts counts;

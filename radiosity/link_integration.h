@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "kernel/coupling.h"
+#include "quadrature/gauss_legendre.h"
 #include "radiosity/gauss_tables.h"
 #include "radiosity/visibility.h"
 
@@ -55,7 +56,7 @@ class LinkIntegrator {
  public:
   // Writes the link's coupling (rows receiver, columns source functions) for `rule`
   // {Rs, Rt, Su, Sv} from `tables`, splitting touching pairs up to `depth` levels.
-  LinkIntegrationCounts integrate(const Link& link, const std::array<int, 4>& rule,
+  LinkIntegrationCounts integrate(const Link& link, const GaussPointCounts& rule,
                                   const GaussTables& tables, int depth,
                                   Eigen::Map<Eigen::MatrixXd> coupling);
 

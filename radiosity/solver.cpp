@@ -92,14 +92,14 @@ int alongSide(const Patch& element, bool alongU, int points) {
 
 }  // namespace
 
-std::array<int, 4> Solver::chooseRule(const SolverLink& link,
+GaussPointCounts Solver::chooseRule(const SolverLink& link,
                                       std::uint64_t* checkEvaluations) const {
   const int n = options_.degree + 1;
   // Fixed rules: d+1 points per axis, but 2 at degree 0, where the midpoint rule overestimates
   // peaked kernels (the white furnace at degree 0 came out 9% bright with it, 3% at
   // --bf-eps 0.05; 0.8% with 2 points).
   const int fixed = std::max(n, 2);
-  std::array<int, 4> rule = {fixed, fixed, fixed, fixed};
+  GaussPointCounts rule = {fixed, fixed, fixed, fixed};
   const Patch& r = (*hierarchy_)[link.receiver].geometry;
   const Patch& s = (*hierarchy_)[link.source].geometry;
   if (options_.rules != RuleChoice::kFixed) {
@@ -150,7 +150,7 @@ void Solver::updateSourcePoints() {
       return;
     }
     double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
-    const std::array<int, 4> rule = chooseGaussRulesNoVisibility(adaptiveInput(int(e), magnitudes));
+    const GaussPointCounts rule = chooseGaussRulesNoVisibility(adaptiveInput(int(e), magnitudes));
     sourcePoints_[e] = {rule[2], rule[3]};
   });
 }
@@ -160,7 +160,7 @@ void Solver::computeCouplings() {
   updateSourcePoints();
   const std::uint64_t checksBefore = statistics_.ruleCheckEvaluations;
   std::vector<int> todo;
-  std::vector<std::array<int, 4>> rules;
+  std::vector<GaussPointCounts> rules;
   std::vector<bool> again;
   std::vector<bool> composites;
   for (std::size_t k = 0; k < links_.size(); ++k) {
@@ -173,7 +173,7 @@ void Solver::computeCouplings() {
     // source's coefficients rather than zeros.
     if (!link.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
     link.sourcePoints = sourcePoints;
-    const std::array<int, 4> rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
+    const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
     if (link.computed && rule == link.rule) continue;
     if (link.computed) ++statistics_.recomputations;
     todo.push_back(int(k));
@@ -204,7 +204,7 @@ void Solver::computeCouplings() {
   std::vector<std::uint64_t> rays(todo.size(), 0);
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t k) {
     SolverLink& link = links_[std::size_t(todo[k])];
-    const std::array<int, 4>& rule = rules[k];
+    const GaussPointCounts& rule = rules[k];
     const Link kernelLink{(*hierarchy_)[link.receiver].geometry,
                           (*hierarchy_)[link.source].geometry,
                           link.visibility == LinkClass::kPartial ? &impl_->occluders : nullptr};

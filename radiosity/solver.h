@@ -131,7 +131,7 @@ struct SolverLink {
   bool occlusionProven = false;  // occluded by one candidate (blocksShaft): never examined
   bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
   int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
-  std::array<int, 4> rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
+  GaussPointCounts rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
   std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
   // The source points {pu, pv} whose columns the stored coupling keeps (source_projection.h):
   // min(Su, d+1), min(Sv, d+1) for a product rule, {d+1, d+1} (every column) for a
@@ -222,7 +222,7 @@ class Solver {
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
   AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
   // The link's rule; adds the kernel check's evaluations to *checkEvaluations.
-  std::array<int, 4> chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
+  GaussPointCounts chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
   void updateSourcePoints();
   void computeCouplings();
   void projectSources();

@@ -31,7 +31,7 @@ bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& go
   CouplingAccumulator accumulator;
   bool havePrevious = false;
   for (int n : kGaussOrders) {
-    const PreparedRule prepared(std::make_shared<GaussProductRule>(std::array{n, n, n, n}), degree);
+    const PreparedRule prepared(std::make_shared<GaussProductRule>(GaussPointCounts{n, n, n, n}), degree);
     LinkIntegral current;
     prepared.integrate(link, 0, accumulator, current);
     gold.kernelEvaluations += current.kernelEvaluations;

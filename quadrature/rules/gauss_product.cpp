@@ -7,28 +7,12 @@
 #include "quadrature/gauss_legendre.h"
 
 namespace radquad {
-namespace {
-
-PatchSamples tensorGauss(int alongU, int alongV) {
-  const GaussLegendreRule& ruleU = gaussLegendreUnit(alongU);
-  const GaussLegendreRule& ruleV = gaussLegendreUnit(alongV);
-  PatchSamples samples;
-  for (int i = 0; i < alongU; ++i) {
-    for (int j = 0; j < alongV; ++j) {
-      samples.push(ruleU.nodes[i], ruleV.nodes[j], ruleU.weights[i] * ruleV.weights[j]);
-    }
-  }
-  return samples;
-}
-
-}  // namespace
-
-std::string gaussProductName(const std::array<int, 4>& pointsPerAxis) {
+std::string gaussProductName(const GaussPointCounts& pointsPerAxis) {
   return "Gauss:" + std::to_string(pointsPerAxis[0]) + "x" + std::to_string(pointsPerAxis[1]) +
          "x" + std::to_string(pointsPerAxis[2]) + "x" + std::to_string(pointsPerAxis[3]);
 }
 
-GaussProductRule::GaussProductRule(std::array<int, 4> pointsPerAxis, std::string name)
+GaussProductRule::GaussProductRule(GaussPointCounts pointsPerAxis, std::string name)
     : pointsPerAxis_(pointsPerAxis),
       name_(name.empty() ? gaussProductName(pointsPerAxis) : std::move(name)) {
   for (int n : pointsPerAxis_) {
@@ -38,8 +22,8 @@ GaussProductRule::GaussProductRule(std::array<int, 4> pointsPerAxis, std::string
     }
   }
   samples_.isProduct = true;
-  samples_.receiver = tensorGauss(pointsPerAxis_[0], pointsPerAxis_[1]);
-  samples_.source = tensorGauss(pointsPerAxis_[2], pointsPerAxis_[3]);
+  samples_.receiver = gaussProductSamples(pointsPerAxis_[0], pointsPerAxis_[1]);
+  samples_.source = gaussProductSamples(pointsPerAxis_[2], pointsPerAxis_[3]);
 }
 
 std::size_t GaussProductRule::sampleCount() const {
@@ -62,7 +46,7 @@ RuleSamples GaussProductRule::samples(std::uint64_t) const {
 }
 
 std::shared_ptr<const Rule> makeGaussProductRule(const std::string& parameter) {
-  std::array<int, 4> counts{};
+  GaussPointCounts counts{};
   const char* cursor = parameter.data();
   const char* end = parameter.data() + parameter.size();
   for (int axis = 0; axis < 4; ++axis) {

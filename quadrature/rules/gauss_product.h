@@ -16,6 +16,7 @@
 #include <memory>
 #include <string>
 
+#include "quadrature/gauss_legendre.h"
 #include "quadrature/rule.h"
 
 namespace radquad {
@@ -23,7 +24,7 @@ namespace radquad {
 class GaussProductRule : public Rule {
  public:
   // `name` empty: the canonical "Gauss:RsxRtxSuxSv".
-  GaussProductRule(std::array<int, 4> pointsPerAxis, std::string name = "");
+  GaussProductRule(GaussPointCounts pointsPerAxis, std::string name = "");
 
   std::string name() const override { return name_; }
   std::size_t sampleCount() const override;
@@ -32,10 +33,10 @@ class GaussProductRule : public Rule {
   std::string citation() const override;
   RuleSamples samples(std::uint64_t seed) const override;
 
-  const std::array<int, 4>& pointsPerAxis() const { return pointsPerAxis_; }
+  const GaussPointCounts& pointsPerAxis() const { return pointsPerAxis_; }
 
  private:
-  std::array<int, 4> pointsPerAxis_;
+  GaussPointCounts pointsPerAxis_;
   std::string name_;
   RuleSamples samples_;
 };
@@ -44,6 +45,6 @@ class GaussProductRule : public Rule {
 std::shared_ptr<const Rule> makeGaussProductRule(const std::string& parameter);
 
 // The product of the receiver's and the source's 2D Gauss rules (the adaptive method uses it).
-std::string gaussProductName(const std::array<int, 4>& pointsPerAxis);
+std::string gaussProductName(const GaussPointCounts& pointsPerAxis);
 
 }  // namespace radquad

@@ -33,8 +33,8 @@ TEST(AdaptiveGauss, ReportExampleQuadraticConstantSource) {
   // Section 5: a quadratic basis whose source has only its constant function significant
   // needs 3x3 receiver points and 1x1 source points: 9 kernel evaluations instead of 81.
   const auto magnitudes = coefficients(2, {{0, 0}});
-  const GaussRuleChoice rule = chooseGaussRulesNoVisibility(input(2, magnitudes, 0.01));
-  EXPECT_EQ(rule, (GaussRuleChoice{3, 3, 1, 1}));
+  const GaussPointCounts rule = chooseGaussRulesNoVisibility(input(2, magnitudes, 0.01));
+  EXPECT_EQ(rule, (GaussPointCounts{3, 3, 1, 1}));
   EXPECT_EQ(ruleEvaluations(rule), 9u);
   const int full = 3;
   EXPECT_EQ(ruleEvaluations({full, full, full, full}), 81u);
@@ -43,30 +43,30 @@ TEST(AdaptiveGauss, ReportExampleQuadraticConstantSource) {
 TEST(AdaptiveGauss, EachSourceAxisFollowsItsHighestSignificantOrder) {
   // Order i along u is significant when any B_(i,j) is; order j along v likewise.
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(3, coefficients(3, {{0, 0}, {2, 0}}), 0.5)),
-            (GaussRuleChoice{4, 4, 3, 1}));
+            (GaussPointCounts{4, 4, 3, 1}));
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(3, coefficients(3, {{0, 1}}), 0.5)),
-            (GaussRuleChoice{4, 4, 1, 2}));
+            (GaussPointCounts{4, 4, 1, 2}));
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(3, coefficients(3, {{1, 2}}), 0.5)),
-            (GaussRuleChoice{4, 4, 2, 3}));
+            (GaussPointCounts{4, 4, 2, 3}));
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(3, coefficients(3, {{3, 3}}), 0.5)),
-            (GaussRuleChoice{4, 4, 4, 4}));
+            (GaussPointCounts{4, 4, 4, 4}));
   // The highest significant order counts, even with insignificant orders below it.
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(3, coefficients(3, {{3, 0}}), 0.5)),
-            (GaussRuleChoice{4, 4, 4, 1}));
+            (GaussPointCounts{4, 4, 4, 1}));
   // The receiver always gets d+1 points per axis; degree 0 is one point everywhere.
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(1, coefficients(1, {}), 0.5)),
-            (GaussRuleChoice{2, 2, 1, 1}));
+            (GaussPointCounts{2, 2, 1, 1}));
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(0, coefficients(0, {{0, 0}}), 0.5)),
-            (GaussRuleChoice{1, 1, 1, 1}));
+            (GaussPointCounts{1, 1, 1, 1}));
 }
 
 TEST(AdaptiveGauss, ThresholdIsStrictAndMagnitudesAreAbsolute) {
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(2, coefficients(2, {{2, 2}}, 0.5), 0.5)),
-            (GaussRuleChoice{3, 3, 1, 1}));
+            (GaussPointCounts{3, 3, 1, 1}));
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(2, coefficients(2, {{2, 2}}, 0.51), 0.5)),
-            (GaussRuleChoice{3, 3, 3, 3}));
+            (GaussPointCounts{3, 3, 3, 3}));
   EXPECT_EQ(chooseGaussRulesNoVisibility(input(2, coefficients(2, {{2, 1}}, -0.7), 0.5)),
-            (GaussRuleChoice{3, 3, 3, 2}));
+            (GaussPointCounts{3, 3, 3, 2}));
 }
 
 TEST(AdaptiveGauss, AxisMagnitudesAreMaximaOverTheOtherAxis) {
@@ -86,7 +86,7 @@ TEST(AdaptiveGauss, PartialVisibilityAddsOnePointToOneShortSourceAxis) {
   int grewU = 0, grewV = 0;
   for (std::uint64_t seed = 0; seed < 200; ++seed) {
     PhiloxStream generator(seed, 0);
-    const GaussRuleChoice rule = chooseGaussRules(input(3, constant, 0.5, true), generator);
+    const GaussPointCounts rule = chooseGaussRules(input(3, constant, 0.5, true), generator);
     ASSERT_EQ(rule[0], 4);
     ASSERT_EQ(rule[1], 4);
     ASSERT_EQ(rule[2] + rule[3], 3) << "exactly one axis grows by one point";
@@ -102,13 +102,13 @@ TEST(AdaptiveGauss, PartialVisibilityAddsOnePointToOneShortSourceAxis) {
   PhiloxStream generator(7, 0);
   // Only the short axis can grow; a full rule stays full; unoccluded links never grow.
   EXPECT_EQ(chooseGaussRules(input(3, coefficients(3, {{3, 0}}), 0.5, true), generator),
-            (GaussRuleChoice{4, 4, 4, 2}));
+            (GaussPointCounts{4, 4, 4, 2}));
   EXPECT_EQ(chooseGaussRules(input(3, coefficients(3, {{1, 3}}), 0.5, true), generator),
-            (GaussRuleChoice{4, 4, 3, 4}));
+            (GaussPointCounts{4, 4, 3, 4}));
   EXPECT_EQ(chooseGaussRules(input(3, coefficients(3, {{3, 3}}), 0.5, true), generator),
-            (GaussRuleChoice{4, 4, 4, 4}));
+            (GaussPointCounts{4, 4, 4, 4}));
   EXPECT_EQ(chooseGaussRules(input(3, constant, 0.5, false), generator),
-            (GaussRuleChoice{4, 4, 1, 1}));
+            (GaussPointCounts{4, 4, 1, 1}));
 }
 
 TEST(AdaptiveGauss, LinkSeedsDependOnTheOrderedPairOfElements) {

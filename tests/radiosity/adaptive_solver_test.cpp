@@ -63,7 +63,7 @@ TEST(AdaptiveSolverTest, ConstantEmitterGetsOneSourcePoint) {
     for (const SolverLink& link : solver.links()) {
       if (!link.active || solver.hierarchy()[link.source].patch != 0) continue;
       ++fromEmitter;
-      EXPECT_EQ(link.rule, (std::array<int, 4>{degree + 1, degree + 1, 1, 1}));
+      EXPECT_EQ(link.rule, (GaussPointCounts{degree + 1, degree + 1, 1, 1}));
     }
     EXPECT_GT(fromEmitter, 0);
     const double mean = solver.hierarchy()[1].meanRadiosity()[0];

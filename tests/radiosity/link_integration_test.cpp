@@ -26,7 +26,7 @@ Patch quadrantOf(const Patch& patch, int c) {
 // The pieces' own couplings, each from the product rule on the sub-elements with their own
 // basis, put together as K = sum_{c, c'} T_c^T K_(c, c') T_c' (radiosity/two_scale.h).
 Eigen::MatrixXd assembleWithTwoScale(const Patch& receiver, const Patch& source,
-                                     const std::array<int, 4>& rule, const GaussTables& tables,
+                                     const GaussPointCounts& rule, const GaussTables& tables,
                                      const TwoScale& twoScale, int depth) {
   if (depth <= 0 || !elementsNear(receiver, source)) {
     const GaussSide& r = tables.side(rule[0], rule[1]);
@@ -65,9 +65,9 @@ TEST_P(NearLinkTest, CompositeRuleEqualsTheTwoScaleAssemblyOfThePieces) {
   const GaussTables tables(degree);
   const TwoScale twoScale(degree);
   const int functions = basisFunctionCount(degree);
-  for (const std::array<int, 4>& rule :
-       {std::array<int, 4>{degree + 1, degree + 1, degree + 1, degree + 1},
-        std::array<int, 4>{degree + 1, degree + 1, 1, 2}, std::array<int, 4>{3, 2, 2, 1}}) {
+  for (const GaussPointCounts& rule :
+       {GaussPointCounts{degree + 1, degree + 1, degree + 1, degree + 1},
+        GaussPointCounts{degree + 1, degree + 1, 1, 2}, GaussPointCounts{3, 2, 2, 1}}) {
     for (int depth : {0, 1, 3}) {
       Eigen::MatrixXd composite(functions, functions);
       LinkIntegrator integrator;
