@@ -1,6 +1,7 @@
-// The solver's state that its header keeps private (solver.cpp, refinement.cpp and the checks in
-// form_factor_check.cpp share it): the occluder scene of every patch, the Gauss tables, the
-// visibility classifier, per-thread link integrators and the coupling store.
+// The solver's state that its header keeps private, shared by its phases (solver.cpp,
+// refinement.cpp, rule_choice.cpp, gather.cpp and the checks in form_factor_check.cpp): the
+// occluder scene of every patch, the Gauss tables, the visibility classifier, per-thread link
+// integrators and the coupling store.
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>

@@ -172,4 +172,16 @@ std::vector<ReceiverSegment> criticalSegments(
   return segments;
 }
 
+std::vector<double> crossingsAt(const std::vector<ReceiverSegment>& segments, double s) {
+  std::vector<double> breaks = {0.0, 1.0};
+  for (const auto& segment : segments) {
+    const double s0 = segment.a.x(), s1 = segment.b.x();
+    if (std::abs(s1 - s0) < 1e-14) continue;
+    const double f = (s - s0) / (s1 - s0);
+    if (f < 0.0 || f > 1.0) continue;
+    breaks.push_back(segment.a.y() + f * (segment.b.y() - segment.a.y()));
+  }
+  return breaks;
+}
+
 }  // namespace radquad

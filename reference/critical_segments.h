@@ -35,4 +35,8 @@ std::vector<ReceiverSegment> criticalSegments(
     const Patch& receiver, const Patch& source,
     const std::vector<std::vector<Eigen::Vector3d>>& occluders);
 
+// The t of every segment crossing the line s = const (segments along t excluded: they are
+// breakpoints of the outer integral), with 0 and 1.
+std::vector<double> crossingsAt(const std::vector<ReceiverSegment>& segments, double s);
+
 }  // namespace radquad

@@ -18,6 +18,7 @@
 #include "quadrature/gauss_legendre.h"
 #include "reference/critical_segments.h"
 #include "reference/exact_visibility.h"
+#include "reference/adaptive_pieces.h"
 #include "reference/gauss_kronrod.h"
 #include "reference/source_moments.h"
 
@@ -100,112 +101,6 @@ int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* 
                       }
                     });
   return integrand->finite() ? 0 : 1;
-}
-
-// The points of one piece of a 1D adaptive integration, of a vector of functions.
-struct Piece {
-  double a = 0.0, b = 0.0;
-  std::vector<double> value, error;  // Kronrod estimate; |Kronrod - Gauss| (+ inner errors)
-  double worst = 0.0;                // the largest entry of error
-};
-
-double largestAbs(const std::vector<double>& v) {
-  double m = 0.0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
-
-// Folds the samples of a piece (samples[j * values + v] at the pair's point j) into
-// its value and error: the Kronrod sum, and its distance from the embedded Gauss sum (the
-// Gauss rule's error, a bound on the Kronrod rule's, which is far smaller on analytic pieces).
-void foldPiece(const GaussKronrodPair& pair, const double* samples, std::size_t values,
-               Piece& piece) {
-  piece.value.assign(values, 0.0);
-  std::vector<double> gauss(values, 0.0);
-  const double half = 0.5 * (piece.b - piece.a);
-  for (int j = 0; j < pair.points(); ++j) {
-    const double kronrod = half * pair.kronrodWeight(j);
-    const double gaussWeight = half * pair.gaussWeight(j);
-    for (std::size_t v = 0; v < values; ++v) {
-      piece.value[v] += kronrod * samples[std::size_t(j) * values + v];
-      gauss[v] += gaussWeight * samples[std::size_t(j) * values + v];
-    }
-  }
-  piece.error.resize(values);
-  for (std::size_t v = 0; v < values; ++v) piece.error[v] = std::abs(piece.value[v] - gauss[v]);
-  piece.worst = largestAbs(piece.error);
-}
-
-double kronrodAbscissa(const GaussKronrodPair& pair, const Piece& piece, int j) {
-  return 0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * pair.node(j);
-}
-
-// The pieces between sorted breakpoints in [0, 1] (gaps under 1e-12 merged).
-std::vector<Piece> piecesBetween(std::vector<double> breaks) {
-  std::sort(breaks.begin(), breaks.end());
-  std::vector<Piece> pieces;
-  double start = 0.0;
-  for (double b : breaks) {
-    b = std::min(std::max(b, 0.0), 1.0);
-    if (b - start > 1e-12) {
-      pieces.push_back(Piece{start, b, {}, {}, 0.0});
-      start = b;
-    }
-  }
-  if (pieces.empty()) pieces.push_back(Piece{0.0, 1.0, {}, {}, 0.0});
-  pieces.back().b = 1.0;
-  return pieces;
-}
-
-// The t of every segment crossing the line s = const (segments along t excluded: they are
-// breakpoints of the outer integral).
-std::vector<double> crossingsAt(const std::vector<ReceiverSegment>& segments, double s) {
-  std::vector<double> breaks = {0.0, 1.0};
-  for (const auto& segment : segments) {
-    const double s0 = segment.a.x(), s1 = segment.b.x();
-    if (std::abs(s1 - s0) < 1e-14) continue;
-    const double f = (s - s0) / (s1 - s0);
-    if (f < 0.0 || f > 1.0) continue;
-    breaks.push_back(segment.a.y() + f * (segment.b.y() - segment.a.y()));
-  }
-  return breaks;
-}
-
-// One round of the global adaptive strategy: the pieces carrying at least a quarter of the
-// largest piece error are halved (several at once, so that an outer round's lines run in
-// parallel). Returns false when no piece can be halved.
-template <class Evaluate>
-bool halveWorst(std::vector<Piece>& pieces, Evaluate&& evaluate) {
-  double largest = 0.0;
-  for (const Piece& piece : pieces) largest = std::max(largest, piece.worst);
-  std::vector<Piece> next;
-  std::vector<std::size_t> at;
-  for (const Piece& piece : pieces) {
-    if (piece.worst > 0.0 && piece.worst >= 0.25 * largest && piece.b - piece.a > 1e-12) {
-      const double middle = 0.5 * (piece.a + piece.b);
-      at.push_back(next.size());
-      next.push_back(Piece{piece.a, middle, {}, {}, 0.0});
-      next.push_back(Piece{middle, piece.b, {}, {}, 0.0});
-    } else {
-      next.push_back(piece);
-    }
-  }
-  if (at.empty()) return false;
-  evaluate(next, at);
-  pieces = std::move(next);
-  return true;
-}
-
-void sumPieces(const std::vector<Piece>& pieces, std::size_t values, std::vector<double>& value,
-               std::vector<double>& error) {
-  value.assign(values, 0.0);
-  error.assign(values, 0.0);
-  for (const Piece& piece : pieces) {
-    for (std::size_t v = 0; v < values; ++v) {
-      value[v] += piece.value[v];
-      error[v] += piece.error[v];
-    }
-  }
 }
 
 // The outer integral as iterated adaptive Gauss-Kronrod (gauss_kronrod.h) with the critical segments

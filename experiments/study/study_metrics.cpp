@@ -125,4 +125,10 @@ nlohmann::json statisticsToJson(const SummaryStatistics& statistics) {
           {"max", statistics.max},   {"sem", statistics.sem},       {"count", statistics.count}};
 }
 
+double sum(const std::vector<double>& values) {
+  double total = 0.0;
+  for (const double value : values) total += value;
+  return total;
+}
+
 }  // namespace radquad

@@ -6,6 +6,8 @@
 
 #include "experiments/json_input.h"
 #include "experiments/study/reference_estimate.h"
+#include "experiments/study/study_breakdown.h"
+#include "experiments/study/study_link_tables.h"
 #include "experiments/study/study_metrics.h"
 #include "experiments/study/study_runner.h"
 
@@ -58,143 +60,6 @@ nlohmann::json boundTable(const std::vector<LinkRecord>& links, const auto& pick
           {"total_median", totalStatistics.median},
           {"total_p90", totalStatistics.p90},
           {"total_max", totalStatistics.max}};
-}
-
-double sum(const std::vector<double>& values) {
-  double total = 0.0;
-  for (const double value : values) total += value;
-  return total;
-}
-
-// Four significant digits: per-link values are for reading and plotting, not for rescoring.
-double rounded(double value) {
-  if (value == 0.0 || !std::isfinite(value)) return value;
-  const double scale = std::pow(10.0, 3 - std::floor(std::log10(std::fabs(value))));
-  return std::round(value * scale) / scale;
-}
-
-// Every link's own scores, in candidate order (rules in the order of "rules").
-nlohmann::json perLinkTable(const ClassRun& classRun, bool gold, bool fig2) {
-  nlohmann::json links = nlohmann::json::array();
-  for (const LinkRecord& link : classRun.links) {
-    nlohmann::json entry = {{"candidate", link.candidate},
-                            {"occluder", occluderKindName(link.occluderKind)},
-                            {"orientation", orientationName(link.orientation)},
-                            {"distance_factor", rounded(link.distanceFactor)},
-                            {"visible_fraction", rounded(link.visibleFraction)}};
-    if (!link.scene.empty()) entry["scene"] = link.scene;
-    auto roundedAll = [](const std::vector<double>& values) {
-      std::vector<double> out;
-      for (const double value : values) out.push_back(rounded(value));
-      return out;
-    };
-    entry["relative_error"] = roundedAll(link.relativeError);
-    if (fig2) {
-      std::vector<double> totals;
-      for (const auto& bound : link.l1Bound) totals.push_back(sum(bound));
-      entry["l1_error_bound_total"] = roundedAll(totals);
-      entry["relative_frobenius_error"] = roundedAll(link.frobeniusError);
-    }
-    if (gold) {
-      entry["gold_method"] = link.goldMethod;
-      entry["gold_converged"] = link.goldConverged;
-      entry["gold_max_error_over_largest_entry"] = rounded(link.goldMaxRelativeError);
-      entry["relative_error_vs_gold"] = roundedAll(link.relativeErrorVsGold);
-      entry["reference_relative_error_vs_gold"] = rounded(link.referenceRelativeErrorVsGold);
-      if (fig2) {
-        std::vector<double> totals;
-        for (const auto& bound : link.l1BoundVsGold) totals.push_back(sum(bound));
-        entry["l1_error_bound_total_vs_gold"] = roundedAll(totals);
-        entry["relative_frobenius_error_vs_gold"] = roundedAll(link.frobeniusErrorVsGold);
-      }
-    }
-    links.push_back(std::move(entry));
-  }
-  return links;
-}
-
-// Every rule's paired ratio of means to FullGauss's on the same links, with its 95% interval:
-// [ratio, low, high] per rule (study_metrics.h, pairedRatio).
-nlohmann::json ratiosTo(const std::vector<std::vector<double>>& values, std::size_t base) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const std::vector<double>& rule : values) {
-    const PairedRatio ratio = pairedRatio(rule, values[base]);
-    out.push_back({ratio.ratio, ratio.low, ratio.high});
-  }
-  return out;
-}
-
-// Mean and median of every rule's relative error (and L1 bound total, Figure 2) over the
-// links of one group, rules in the order of "rules".
-nlohmann::json groupScores(const std::vector<const LinkRecord*>& group, std::size_t rules,
-                           bool gold, bool fig2, int fullGauss) {
-  nlohmann::json out = {{"links", group.size()}};
-  if (group.empty()) return out;
-  auto scores = [&](const auto& pick) {
-    std::vector<double> means, medians, p90s, maxima;
-    std::vector<std::vector<double>> values(rules);
-    for (std::size_t r = 0; r < rules; ++r) {
-      for (const LinkRecord* link : group) values[r].push_back(pick(*link, r));
-      const SummaryStatistics statistics = summarize(values[r]);
-      means.push_back(statistics.mean);
-      medians.push_back(statistics.median);
-      p90s.push_back(statistics.p90);
-      maxima.push_back(statistics.max);
-    }
-    nlohmann::json table = {{"mean", means}, {"median", medians}, {"p90", p90s}, {"max", maxima}};
-    if (fullGauss >= 0) table["ratio_to_fullgauss"] = ratiosTo(values, std::size_t(fullGauss));
-    return table;
-  };
-  out["relative_error"] = scores([](const LinkRecord& l, std::size_t r) { return l.relativeError[r]; });
-  if (fig2) {
-    out["l1_error_bound_total"] =
-        scores([](const LinkRecord& l, std::size_t r) { return sum(l.l1Bound[r]); });
-    out["relative_frobenius_error"] =
-        scores([](const LinkRecord& l, std::size_t r) { return l.frobeniusError[r]; });
-  }
-  if (gold) {
-    out["relative_error_vs_gold"] =
-        scores([](const LinkRecord& l, std::size_t r) { return l.relativeErrorVsGold[r]; });
-    if (fig2) {
-      out["l1_error_bound_total_vs_gold"] =
-          scores([](const LinkRecord& l, std::size_t r) { return sum(l.l1BoundVsGold[r]); });
-      out["relative_frobenius_error_vs_gold"] =
-          scores([](const LinkRecord& l, std::size_t r) { return l.frobeniusErrorVsGold[r]; });
-    }
-  }
-  return out;
-}
-
-// Where each rule wins: the scores by occluder kind and by distance band (distance of the
-// centres over the longest side).
-nlohmann::json breakdown(const ClassRun& classRun, std::size_t rules, bool gold, bool fig2,
-                         int fullGauss) {
-  std::map<std::string, std::vector<const LinkRecord*>> byOccluder;
-  for (const LinkRecord& link : classRun.links) {
-    // Scene-derived links: by their scene.
-    const std::string kind = link.scene.empty() ? occluderKindName(link.occluderKind)
-                                                : std::string("scene ") + link.scene;
-    byOccluder[kind].push_back(&link);
-  }
-  nlohmann::json occluders = nlohmann::json::object();
-  for (const auto& [kind, group] : byOccluder) {
-    occluders[kind] = groupScores(group, rules, gold, fig2, fullGauss);
-  }
-  constexpr double kBands[] = {0.0, 0.5, 1.0, 2.0, 1e300};
-  nlohmann::json distances = nlohmann::json::array();
-  for (int band = 0; band < 4; ++band) {
-    std::vector<const LinkRecord*> group;
-    for (const LinkRecord& link : classRun.links) {
-      if (link.distanceFactor >= kBands[band] && link.distanceFactor < kBands[band + 1]) {
-        group.push_back(&link);
-      }
-    }
-    nlohmann::json entry = groupScores(group, rules, gold, fig2, fullGauss);
-    entry["distance_factor"] = {kBands[band], band == 3 ? nlohmann::json(nullptr)
-                                                        : nlohmann::json(kBands[band + 1])};
-    distances.push_back(std::move(entry));
-  }
-  return {{"by_occluder", occluders}, {"by_distance", distances}};
 }
 
 nlohmann::json standardErrorSummary(const std::vector<LinkRecord>& links) {
@@ -371,8 +236,8 @@ nlohmann::json classTable(const StudyRun& run, const ClassRun& classRun, bool go
           {"candidates", candidateCounts(classRun)},
           {"reference", classReference(run, classRun, gold, fig2)},
           {"rules", rules},
-          {"breakdown", breakdown(classRun, run.rules.size(), gold, fig2, fullGaussIndex(run))},
-          {"per_link", perLinkTable(classRun, gold, fig2)}};
+          {"breakdown", studyBreakdown(classRun, run.rules.size(), gold, fig2, fullGaussIndex(run))},
+          {"per_link", perLinkScores(classRun, gold, fig2)}};
 }
 
 }  // namespace
@@ -464,53 +329,6 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
         {"worst", worst}};
   }
   return table;
-}
-
-std::string linkTableLines(const StudyConfig& config, const StudyRun& run) {
-  std::string out;
-  for (const ClassRun& classRun : run.classes) {
-    for (const LinkRecord& link : classRun.links) {
-      if (!link.detail) throw std::logic_error("linkTableLines: the run kept no link details");
-      const LinkDetail& detail = *link.detail;
-      nlohmann::json occluders = nlohmann::json::array();
-      for (const auto& polygon : detail.occluders) occluders.push_back(occluderToJson(polygon));
-      nlohmann::json rules = nlohmann::json::array();
-      for (std::size_t r = 0; r < run.rules.size(); ++r) {
-        nlohmann::json rule = {{"name", run.rules[r].name},
-                               {"trials", run.rules[r].trials},
-                               {"coupling", matrixToJson(detail.ruleMean[r])}};
-        if (run.rules[r].random) {
-          rule["standard_deviation"] = matrixToJson(detail.ruleDeviation[r]);
-        }
-        rules.push_back(std::move(rule));
-      }
-      nlohmann::json line = {{"class", studyClassName(classRun.linkClass)},
-                             {"candidate", link.candidate},
-                             {"degree", config.degree()},
-                             {"occluder", occluderKindName(link.occluderKind)},
-                             {"orientation", orientationName(link.orientation)},
-                             {"distance_factor", link.distanceFactor},
-                             {"visible_fraction", link.visibleFraction},
-                             {"scene", link.scene.empty() ? nlohmann::json(nullptr)
-                                                          : nlohmann::json(link.scene)},
-                             {"receiver", patchToJson(detail.receiver)},
-                             {"source", patchToJson(detail.source)},
-                             {"occluders", std::move(occluders)},
-                             {"reference",
-                              {{"name", run.referenceName},
-                               {"coupling", matrixToJson(detail.reference)},
-                               {"standard_error", matrixToJson(detail.referenceStandardError)}}},
-                             {"rules", std::move(rules)}};
-      if (detail.gold.size() > 0) {
-        line["gold"] = {{"method", link.goldMethod},
-                        {"converged", link.goldConverged},
-                        {"coupling", matrixToJson(detail.gold)},
-                        {"error", matrixToJson(detail.goldError)}};
-      }
-      out += line.dump() + "\n";
-    }
-  }
-  return out;
 }
 
 }  // namespace radquad

@@ -1,0 +1,130 @@
+// The solver's gather (the Jacobi step E_R = sum over R's links of K B_S) and the source
+// projections it reads; solver.cpp calls it once per iteration.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "radiosity/coupling_store.h"
+#include "radiosity/solver.h"
+#include "radiosity/solver_impl.h"
+
+namespace radquad {
+
+namespace {
+
+// gathered += sum over the links of K times the source's B, with F known at compile time
+// (Eigen::Dynamic for other sizes) so that the small products unroll into vector
+// multiply-adds: a gather visits every link in every iteration. A link that keeps every
+// column multiplies K (F x F) by B (F x 3); one that keeps the columns of its P source points
+// multiplies them (F x P) by the source's projection Bhat (P x 3, source_projection.h), which
+// reads and multiplies P / F of the coupling.
+template <int F>
+void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& couplings,
+                 const Hierarchy& hierarchy, const std::vector<std::ptrdiff_t>& offsets,
+                 const std::vector<double>& projections, Element& element) {
+  const int functions = int(element.gathered.rows());
+  const int orders = hierarchy.degree() + 1;
+  using Matrix = Eigen::Matrix<double, F, F>;
+  using Block = Eigen::Matrix<double, F, 3>;
+  using Columns = Eigen::Matrix<double, F, Eigen::Dynamic>;
+  using Projection = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+  Block sum = Block::Zero(functions, 3);
+  const std::vector<int>& indices = element.links;
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    // The links' records and couplings lie apart in memory: fetch those of the links a few
+    // places ahead while this one is multiplied.
+    if (k + 8 < indices.size()) __builtin_prefetch(&links[std::size_t(indices[k + 8])]);
+    if (k + 4 < indices.size()) {
+      const SolverLink& ahead = links[std::size_t(indices[k + 4])];
+      if (ahead.slot >= 0) {
+        const char* start =
+            reinterpret_cast<const char*>(couplings.data(keptColumns(ahead), ahead.slot));
+        const std::size_t bytes =
+            std::size_t(functions) * std::size_t(keptColumns(ahead)) * sizeof(double);
+        for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
+      }
+    }
+    const SolverLink& link = links[std::size_t(indices[k])];
+    if (!link.computed) continue;  // its source had no radiosity yet
+    const double* coupling = couplings.data(keptColumns(link), link.slot);
+    const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
+    if (pu == orders && pv == orders) {
+      sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)
+                           .lazyProduct(Eigen::Map<const Block>(
+                               hierarchy[link.source].radiosity.data(), functions, 3));
+    } else {
+      const std::ptrdiff_t offset =
+          offsets[std::size_t(link.source) * std::size_t(functions) +
+                  std::size_t((pu - 1) * orders + pv - 1)];
+      sum.noalias() += Eigen::Map<const Columns>(coupling, functions, pu * pv)
+                           .lazyProduct(Eigen::Map<const Projection>(
+                               projections.data() + offset, pu * pv, 3));
+    }
+  }
+  element.gathered = sum;
+}
+
+}  // namespace
+
+// The projections Bhat of every (source, source points) pair some link gathers through
+// (source_projection.h), from the sources' current radiosity.
+void Solver::projectSources() {
+  const int orders = options_.degree + 1;
+  const std::size_t shapes = std::size_t(orders * orders);
+  projectionOffset_.assign(hierarchy_->size() * shapes, -1);
+  for (const SolverLink& link : links_) {
+    if (!link.active || !link.computed) continue;
+    const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
+    if (pu == orders && pv == orders) continue;
+    projectionOffset_[std::size_t(link.source) * shapes + std::size_t((pu - 1) * orders + pv - 1)] =
+        0;
+  }
+  std::ptrdiff_t total = 0;
+  for (std::size_t k = 0; k < projectionOffset_.size(); ++k) {
+    if (projectionOffset_[k] < 0) continue;
+    projectionOffset_[k] = total;
+    const std::ptrdiff_t shape = std::ptrdiff_t(k % shapes);
+    total += (shape / orders + 1) * (shape % orders + 1) * 3;
+  }
+  projections_.resize(std::size_t(total));
+  tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
+    for (std::size_t shape = 0; shape < shapes; ++shape) {
+      const std::ptrdiff_t offset = projectionOffset_[e * shapes + shape];
+      if (offset < 0) continue;
+      impl_->projection.project(int(shape) / orders + 1, int(shape) % orders + 1,
+                                (*hierarchy_)[int(e)].radiosity.data(),
+                                projections_.data() + offset);
+    }
+  });
+}
+
+// E_R = sum over R's links of K B_S (docs/design.md: E_a = sum_b K[a][b] B_b), with every
+// source's radiosity from the previous iteration (Jacobi).
+void Solver::gather() {
+  projectSources();
+  const int functions = hierarchy_->functions();
+  const CouplingStore& couplings = impl_->couplings;
+  tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
+    Element& element = (*hierarchy_)[int(e)];
+    switch (functions) {
+      case 1:
+        return gatherLinks<1>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                              element);
+      case 4:
+        return gatherLinks<4>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                              element);
+      case 9:
+        return gatherLinks<9>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                              element);
+      case 16:
+        return gatherLinks<16>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+                               element);
+      default:
+        return gatherLinks<Eigen::Dynamic>(links_, couplings, *hierarchy_, projectionOffset_,
+                                           projections_, element);
+    }
+  });
+}
+
+}  // namespace radquad
