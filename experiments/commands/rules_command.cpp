@@ -1,6 +1,12 @@
 // `radquad rules [--json]`: lists the registered rules; `radquad rules --dump NAME [--seed S]
-// [--draws T]` prints one rule's points in the rule-file format (experiments/rule_file.h): a
-// random rule's draw for S, or its T draws for seeds S..S+T-1 as a rule of listed draws.
+// [--draws T] [--degree-check]` prints one rule's points in the rule-file format
+// (experiments/rule_file.h): a random rule's draw for S, or its T draws for seeds S..S+T-1 as
+// a rule of listed draws. --degree-check measures the total degree the written points
+// integrate exactly (the registry test's check, on what was written) and exits 1 when it is
+// not the declared one.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -10,7 +16,9 @@
 #include "experiments/json_input.h"
 #include "experiments/rule_file.h"
 #include "experiments/trace_report.h"
+#include "kernel/input_error.h"
 #include "quadrature/registry.h"
+#include "quadrature/rules/data_rule.h"
 
 namespace radquad {
 namespace {
@@ -36,6 +44,58 @@ void runRules(bool asJson) {
   std::cout << "\n";
 }
 
+// The highest total degree every draw integrates exactly (each tensor Legendre polynomial
+// within 1e-10 of the sum of |w|, as data rules are checked), stopping at the first degree
+// that fails or at `cap`; `failing` gets that degree's largest error (0 when capped).
+int exactDegree(const Rule& rule, std::uint64_t seed, int draws, int cap, double& failing) {
+  std::vector<RuleSamples> sets;
+  if (rule.drawCount() > 0) {
+    for (std::size_t d = 0; d < rule.drawCount(); ++d) sets.push_back(rule.listedDraw(d));
+  } else {
+    for (int d = 0; d < std::max(draws, 1); ++d) sets.push_back(rule.samples(seed + std::uint64_t(d)));
+  }
+  int exact = cap;
+  failing = 0.0;
+  for (const RuleSamples& set : sets) {
+    const LinkSamples flat = flattenedPoints(set);
+    double absolute = 0.0;
+    for (const double w : flat.weight) absolute += std::fabs(w);
+    for (int degree = 0; degree <= exact; ++degree) {
+      const double error = legendreExactnessError(flat, degree);
+      if (error > 1e-10 * absolute) {  // degree <= exact: this set lowers it
+        exact = degree - 1;
+        failing = error;
+        break;
+      }
+    }
+  }
+  return exact;
+}
+
+// Reports on stderr; CommandFailure (exit 1) when the measured degree is not the declared one
+// (a random rule declares none: its measured degree is reported only).
+void checkDegree(const Rule& rule, std::uint64_t seed, int draws) {
+  const auto declared = rule.degree();
+  const int cap = kMaxDataRuleDegree;
+  double failing = 0.0;
+  const int exact = exactDegree(rule, seed, draws, cap, failing);
+  std::string text = "rule " + rule.name() + ": exact to degree " + std::to_string(exact);
+  if (exact < cap) {
+    char error[32];
+    std::snprintf(error, sizeof error, "%.3g", failing);
+    text += ", not to degree " + std::to_string(exact + 1) + " (largest error " + error + ")";
+  } else {
+    text += " at least (checked up to " + std::to_string(cap) + ")";
+  }
+  if (!declared) {
+    std::cerr << "radquad rules: " << text << "; no degree declared\n";
+    return;
+  }
+  text += "; declared " + std::to_string(*declared);
+  if (exact != *declared) throw CommandFailure("rules: " + text, 1);
+  std::cerr << "radquad rules: " << text << "\n";
+}
+
 }  // namespace
 
 struct RulesOptions {
@@ -43,6 +103,7 @@ struct RulesOptions {
   std::string dump;
   std::string seedText = "0";
   int draws = 0;
+  bool degreeCheck = false;
 };
 
 void addRulesCommand(CLI::App& app) {
@@ -60,14 +121,20 @@ void addRulesCommand(CLI::App& app) {
                       "draws (its trial t uses draw t: `radquad link --trials T --seed S` gives "
                       "the same numbers with either)")
       ->check(CLI::Range(1, 100000));
+  command->add_flag("--degree-check", options->degreeCheck,
+                    "With --dump: measure the total degree the written points integrate "
+                    "exactly, report it on stderr, exit 1 when it is not the declared one");
   command->callback([options] {
     if (options->dump.empty()) {
+      if (options->degreeCheck) throw InputError("--degree-check: needs --dump NAME");
       runRules(options->asJson);
       return;
     }
     const std::uint64_t seed =
         parseDecimalOption(options->seedText, "--seed", 0, ~std::uint64_t(0));
-    std::cout << ruleToJson(*findAnyRule(options->dump), seed, options->draws).dump(1) << "\n";
+    const auto rule = findAnyRule(options->dump);
+    std::cout << ruleToJson(*rule, seed, options->draws).dump(1) << "\n";
+    if (options->degreeCheck) checkDegree(*rule, seed, options->draws);
   });
 }
 

@@ -228,6 +228,26 @@ printf '{"name": "Half", "points": [[0.5, 0.5, 0.5, 0.5]], "weights": [0.5]}' >"
 expect_error file_rule_weights "half_rule.json: weights sum to" link "$fixtures/good_link.json" --rule "File:$scratch/half_rule.json"
 expect_error file_rule_missing "no_such_rule.json" link "$fixtures/good_link.json" --rule "File:$scratch/no_such_rule.json"
 
+# --degree-check measures the degree the dumped points integrate exactly: FullGauss (3 Gauss
+# points per axis) is exact to degree 5 and not 6, as declared (exit 0); the same points
+# declared exact to degree 1 only (true, so the file loads) are reported as understated (exit
+# 1); without --dump the option is refused (exit 2).
+"$radquad" rules --dump FullGauss --degree-check >/dev/null 2>"$scratch/degree.err"
+status=$?
+[[ $status -eq 0 ]] && grep -q "exact to degree 5, not to degree 6" "$scratch/degree.err"
+check degree_check_holds $?
+"$python" - "$scratch" <<'PY'
+import json, sys
+rule = json.load(open(sys.argv[1] + "/fullgauss_rule.json"))
+rule["degree"], rule["name"] = 1, "Understated"
+json.dump(rule, open(sys.argv[1] + "/understated_rule.json", "w"))
+PY
+"$radquad" rules --dump "File:$scratch/understated_rule.json" --degree-check >/dev/null 2>"$scratch/understated.err"
+status=$?
+[[ $status -eq 1 ]] && grep -q "exact to degree 5, not to degree 6 .*declared 1" "$scratch/understated.err"
+check degree_check_understated $?
+expect_error degree_check_needs_dump "--degree-check: needs --dump NAME" rules --degree-check
+
 # NumPy archives: a product rule (FullGauss, numpy.savez) and a 4D point set (Stroud65,
 # numpy.savez_compressed) written by numpy from the dumped JSON give the registered rules'
 # couplings digit for digit; an archive with a wrongly shaped array, or that is no archive, is
