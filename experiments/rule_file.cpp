@@ -134,7 +134,6 @@ nlohmann::json npzRuleJson(const std::map<std::string, NpyArray>& arrays,
         throw InputError(where + ": " + name + " holds " + std::to_string(matrices.size()) +
                          " draws, the other arrays " + std::to_string(draws.size()));
       }
-      if (draws.empty()) draws = nlohmann::json::array();
       for (std::size_t t = 0; t < matrices.size(); ++t) {
         if (draws.size() <= t) draws.push_back(nlohmann::json::object());
         place(draws[t], matrices[t]);
@@ -151,11 +150,10 @@ nlohmann::json npzRuleJson(const std::map<std::string, NpyArray>& arrays,
     rule["draws"] = std::move(draws);
   }
   for (const auto& [name, array] : arrays) {
-    if (stacked && name != "name" && name != "citation" && name != "degree") {
-      if (name == "points" || name == "weights" || name == "receiver_points" ||
-          name == "receiver_weights" || name == "source_points" || name == "source_weights") {
-        continue;
-      }
+    if (stacked && (name == "points" || name == "weights" || name == "receiver_points" ||
+                    name == "receiver_weights" || name == "source_points" ||
+                    name == "source_weights")) {
+      continue;  // in the draws above
     }
     const std::string member = where + ": " + name;
     if (name == "name" || name == "citation") {
@@ -182,10 +180,6 @@ nlohmann::json npzRuleJson(const std::map<std::string, NpyArray>& arrays,
   }
   return rule;
 }
-
-}  // namespace
-
-namespace {
 
 // One draw's points: {"points", "weights"} or {"receiver", "source"} (keys of `value` that
 // belong to the draw; the caller has checked the others).

@@ -5,7 +5,6 @@
 // integrate exactly (the registry test's check, on what was written) and exits 1 when it is
 // not the declared one.
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -44,30 +43,24 @@ void runRules(bool asJson) {
   std::cout << "\n";
 }
 
-// The highest total degree every draw integrates exactly (each tensor Legendre polynomial
-// within 1e-10 of the sum of |w|, as data rules are checked), stopping at the first degree
-// that fails or at `cap`; `failing` gets that degree's largest error (0 when capped).
+// The highest total degree every written draw integrates exactly (exactnessDegree, the data
+// rules' check), at most `cap`; `failing` gets the largest error at the degree above (0 when
+// capped).
 int exactDegree(const Rule& rule, std::uint64_t seed, int draws, int cap, double& failing) {
-  std::vector<RuleSamples> sets;
-  if (rule.drawCount() > 0) {
-    for (std::size_t d = 0; d < rule.drawCount(); ++d) sets.push_back(rule.listedDraw(d));
-  } else {
-    for (int d = 0; d < std::max(draws, 1); ++d) sets.push_back(rule.samples(seed + std::uint64_t(d)));
-  }
   int exact = cap;
   failing = 0.0;
-  for (const RuleSamples& set : sets) {
-    const LinkSamples flat = flattenedPoints(set);
-    double absolute = 0.0;
-    for (const double w : flat.weight) absolute += std::fabs(w);
-    for (int degree = 0; degree <= exact; ++degree) {
-      const double error = legendreExactnessError(flat, degree);
-      if (error > 1e-10 * absolute) {  // degree <= exact: this set lowers it
-        exact = degree - 1;
-        failing = error;
-        break;
-      }
+  auto lower = [&](const RuleSamples& set) {
+    double error = 0.0;
+    const int degree = exactnessDegree(flattenedPoints(set), exact, error);
+    if (degree < exact) {
+      exact = degree;
+      failing = error;
     }
+  };
+  if (rule.drawCount() > 0) {
+    for (std::size_t d = 0; d < rule.drawCount(); ++d) lower(rule.listedDraw(d));
+  } else {
+    for (int d = 0; d < std::max(draws, 1); ++d) lower(rule.samples(seed + std::uint64_t(d)));
   }
   return exact;
 }

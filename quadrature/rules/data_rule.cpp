@@ -76,6 +76,19 @@ double legendreExactnessError(const LinkSamples& points, int degree) {
   return worst;
 }
 
+int exactnessDegree(const LinkSamples& points, int cap, double& failingError) {
+  double absolute = 0.0;
+  for (const double w : points.weight) absolute += std::fabs(w);
+  for (int degree = 0; degree <= cap; ++degree) {
+    const double error = legendreExactnessError(points, degree);
+    if (error > 1e-10 * absolute) {
+      failingError = error;
+      return degree - 1;
+    }
+  }
+  return cap;
+}
+
 std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& where) {
   if (spec.name.empty()) throw InputError(where + ": the rule has no name");
   if (spec.draws.empty()) throw InputError(where + ": the rule lists no draws");
@@ -114,17 +127,13 @@ std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& w
       throw InputError(where + ": degree " + std::to_string(*spec.degree) + " is not in [0, " +
                        std::to_string(kMaxDataRuleDegree) + "] (or null)");
     }
-    const LinkSamples flat = flattenedPoints(first);
-    double absolute = 0.0;
-    for (double w : flat.weight) absolute += std::fabs(w);
-    for (int degree = 0; degree <= *spec.degree; ++degree) {
-      const double error = legendreExactnessError(flat, degree);
-      if (error > 1e-10 * absolute) {
-        throw InputError(where + ": the rule is declared exact to degree " +
-                         std::to_string(*spec.degree) + " but is not exact at degree " +
-                         std::to_string(degree) + " (largest error over the tensor Legendre "
-                         "polynomials " + std::to_string(error) + ")");
-      }
+    double error = 0.0;
+    const int exact = exactnessDegree(flattenedPoints(first), *spec.degree, error);
+    if (exact < *spec.degree) {
+      throw InputError(where + ": the rule is declared exact to degree " +
+                       std::to_string(*spec.degree) + " but is not exact at degree " +
+                       std::to_string(exact + 1) + " (largest error over the tensor Legendre "
+                       "polynomials " + std::to_string(error) + ")");
     }
   }
   return std::shared_ptr<const Rule>(new DataRule(std::move(spec)));

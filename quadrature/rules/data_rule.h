@@ -60,4 +60,11 @@ std::shared_ptr<const Rule> makeDataRule(DataRuleSpec spec, const std::string& w
 // for the constant and 0 otherwise).
 double legendreExactnessError(const LinkSamples& points, int degree);
 
+// The highest total degree `points` integrate exactly, checking degrees 0, 1, ... up to `cap`:
+// exact at a degree when every tensor Legendre polynomial of it is within 1e-10 of the sum of
+// |w| (the check of declared degrees, here and in the registry's rules). Returns `cap` when
+// every degree up to it holds; otherwise one less than the first failing degree, whose
+// largest error goes to `failingError`.
+int exactnessDegree(const LinkSamples& points, int cap, double& failingError);
+
 }  // namespace radquad
