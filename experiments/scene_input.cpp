@@ -68,13 +68,4 @@ Scene loadScene(const std::string& nameOrPath) {
   return parseScene(readJsonFile(nameOrPath), nameOrPath);
 }
 
-nlohmann::json patchDifferenceJson(const Hierarchy::PatchDifference& difference,
-                                   const Scene& scene) {
-  if (difference.patch < 0) return {{"value", 0.0}, {"patch", nullptr}, {"channel", nullptr}};
-  static const char* const kChannels[] = {"red", "green", "blue"};
-  return {{"value", difference.value},
-          {"patch", scene.patches[std::size_t(difference.patch)].name},
-          {"channel", kChannels[difference.channel]}};
-}
-
 }  // namespace radquad

@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "radiosity/hierarchy.h"
 #include "radiosity/scene.h"
 
 namespace radquad {
@@ -16,9 +15,5 @@ Scene parseScene(const nlohmann::json& value, const std::string& where);
 
 // A built-in scene name ("cornell", "slats") or a path to a scene JSON file.
 Scene loadScene(const std::string& nameOrPath);
-
-// {"value": relative difference, "patch": name, "channel": "red" | "green" | "blue"}.
-nlohmann::json patchDifferenceJson(const Hierarchy::PatchDifference& difference,
-                                   const Scene& scene);
 
 }  // namespace radquad

@@ -12,7 +12,7 @@ double largestAbs(const std::vector<double>& v) {
 }
 
 void foldPiece(const GaussKronrodPair& pair, const double* samples, std::size_t values,
-               Piece& piece) {
+               KronrodPiece& piece) {
   piece.value.assign(values, 0.0);
   std::vector<double> gauss(values, 0.0);
   const double half = 0.5 * (piece.b - piece.a);
@@ -29,31 +29,31 @@ void foldPiece(const GaussKronrodPair& pair, const double* samples, std::size_t 
   piece.worst = largestAbs(piece.error);
 }
 
-double kronrodAbscissa(const GaussKronrodPair& pair, const Piece& piece, int j) {
+double kronrodAbscissa(const GaussKronrodPair& pair, const KronrodPiece& piece, int j) {
   return 0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * pair.node(j);
 }
 
-std::vector<Piece> piecesBetween(std::vector<double> breaks) {
+std::vector<KronrodPiece> piecesBetween(std::vector<double> breaks) {
   std::sort(breaks.begin(), breaks.end());
-  std::vector<Piece> pieces;
+  std::vector<KronrodPiece> pieces;
   double start = 0.0;
   for (double b : breaks) {
     b = std::min(std::max(b, 0.0), 1.0);
     if (b - start > 1e-12) {
-      pieces.push_back(Piece{start, b, {}, {}, 0.0});
+      pieces.push_back(KronrodPiece{start, b, {}, {}, 0.0});
       start = b;
     }
   }
-  if (pieces.empty()) pieces.push_back(Piece{0.0, 1.0, {}, {}, 0.0});
+  if (pieces.empty()) pieces.push_back(KronrodPiece{0.0, 1.0, {}, {}, 0.0});
   pieces.back().b = 1.0;
   return pieces;
 }
 
-void sumPieces(const std::vector<Piece>& pieces, std::size_t values, std::vector<double>& value,
-               std::vector<double>& error) {
+void sumPieces(const std::vector<KronrodPiece>& pieces, std::size_t values,
+               std::vector<double>& value, std::vector<double>& error) {
   value.assign(values, 0.0);
   error.assign(values, 0.0);
-  for (const Piece& piece : pieces) {
+  for (const KronrodPiece& piece : pieces) {
     for (std::size_t v = 0; v < values; ++v) {
       value[v] += piece.value[v];
       error[v] += piece.error[v];

@@ -131,7 +131,7 @@ class CriticalLineCubature {
   // Receiver points the initial breakpoints alone take (no bisection): the cost floor.
   std::uint64_t floorPoints() const {
     std::uint64_t points = 0;
-    for (const Piece& piece : initial_) {
+    for (const KronrodPiece& piece : initial_) {
       const std::size_t pieces = piecesBetween(crossingsAt(segments_, 0.5 * (piece.a + piece.b))).size();
       points += std::uint64_t(pair_.points()) * std::uint64_t(pair_.points()) * pieces;
     }
@@ -143,7 +143,7 @@ class CriticalLineCubature {
     // The inner lines take an absolute tolerance, a share of tolerance * max |K|: K's size
     // comes first from a 16 x 16 Gauss product over the receiver. A poor estimate costs
     // points, not correctness: the summed errors (inner ones included) decide convergence.
-    std::vector<Piece> pieces = initial_;
+    std::vector<KronrodPiece> pieces = initial_;
     double scale = estimateScale();
     std::vector<std::size_t> all(pieces.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
@@ -156,7 +156,7 @@ class CriticalLineCubature {
       if (points_ >= options_.maxEvaluations) return false;
       const double innerTolerance = options_.innerShare * target;
       integrand_.report(points_);
-      if (!halveWorst(pieces, [&](std::vector<Piece>& next, const std::vector<std::size_t>& at) {
+      if (!halveWorst(pieces, [&](std::vector<KronrodPiece>& next, const std::vector<std::size_t>& at) {
             std::vector<std::size_t> fresh;
             for (std::size_t k : at) {
               fresh.push_back(k);
@@ -197,7 +197,7 @@ class CriticalLineCubature {
   // The lines of every piece listed in `fresh` (one per point of the pair), computed in
   // parallel, each to the absolute `innerTolerance`. A line's result depends on its s only,
   // whatever the thread.
-  void evaluateOuter(std::vector<Piece>& pieces, const std::vector<std::size_t>& fresh,
+  void evaluateOuter(std::vector<KronrodPiece>& pieces, const std::vector<std::size_t>& fresh,
                      double innerTolerance) {
     const std::size_t m = std::size_t(pair_.points());
     const std::size_t lines = fresh.size() * m;
@@ -207,7 +207,7 @@ class CriticalLineCubature {
         options_.maxEvaluations > points_ ? options_.maxEvaluations - points_ : 0;
     const std::uint64_t cap =
         std::min<std::uint64_t>(options_.maxLinePoints, left / std::max<std::size_t>(lines, 1));
-    std::vector<Piece> lineResult(lines);
+    std::vector<KronrodPiece> lineResult(lines);
     std::vector<std::uint64_t> linePoints(lines, 0);
     // Progress is reported from the calling thread only, which takes part in the loop.
     const std::thread::id caller = std::this_thread::get_id();
@@ -216,7 +216,7 @@ class CriticalLineCubature {
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         Worker& worker = integrand_.workers.local();
                         for (std::size_t l = range.begin(); l < range.end(); ++l) {
-                          const Piece& piece = pieces[fresh[l / m]];
+                          const KronrodPiece& piece = pieces[fresh[l / m]];
                           const double s = kronrodAbscissa(pair_, piece, int(l % m));
                           linePoints[l] =
                               integrateLine(worker, s, innerTolerance, cap, lineResult[l]);
@@ -227,16 +227,16 @@ class CriticalLineCubature {
     for (std::uint64_t n : linePoints) points_ += n;
     std::vector<double> samples(values_ * m);
     for (std::size_t f = 0; f < fresh.size(); ++f) {
-      Piece& piece = pieces[fresh[f]];
+      KronrodPiece& piece = pieces[fresh[f]];
       for (int j = 0; j < pair_.points(); ++j) {
-        const Piece& line = lineResult[f * m + std::size_t(j)];
+        const KronrodPiece& line = lineResult[f * m + std::size_t(j)];
         std::copy(line.value.begin(), line.value.end(), samples.begin() + std::ptrdiff_t(j) * std::ptrdiff_t(values_));
       }
       foldPiece(pair_, samples.data(), values_, piece);
       // The inner errors, integrated with the Kronrod weights, add to the piece's.
       const double half = 0.5 * (piece.b - piece.a);
       for (int j = 0; j < pair_.points(); ++j) {
-        const Piece& line = lineResult[f * m + std::size_t(j)];
+        const KronrodPiece& line = lineResult[f * m + std::size_t(j)];
         for (std::size_t v = 0; v < values_; ++v) {
           piece.error[v] += half * pair_.kronrodWeight(j) * line.error[v];
         }
@@ -247,14 +247,14 @@ class CriticalLineCubature {
 
   // g(s) and its error into `line` (value, error); returns the points taken.
   std::uint64_t integrateLine(Worker& worker, double s, double tolerance, std::uint64_t cap,
-                              Piece& line) const {
-    std::vector<Piece> pieces = piecesBetween(crossingsAt(segments_, s));
+                              KronrodPiece& line) const {
+    std::vector<KronrodPiece> pieces = piecesBetween(crossingsAt(segments_, s));
     std::uint64_t points = 0;
-    for (Piece& piece : pieces) points += evaluateInner(worker, s, piece);
+    for (KronrodPiece& piece : pieces) points += evaluateInner(worker, s, piece);
     for (;;) {
       sumPieces(pieces, values_, line.value, line.error);
       if (largestAbs(line.error) <= tolerance || points >= cap) return points;
-      if (!halveWorst(pieces, [&](std::vector<Piece>& next, const std::vector<std::size_t>& at) {
+      if (!halveWorst(pieces, [&](std::vector<KronrodPiece>& next, const std::vector<std::size_t>& at) {
             for (std::size_t k : at) {
               points += evaluateInner(worker, s, next[k]);
               points += evaluateInner(worker, s, next[k + 1]);
@@ -265,7 +265,7 @@ class CriticalLineCubature {
     }
   }
 
-  std::uint64_t evaluateInner(Worker& worker, double s, Piece& piece) const {
+  std::uint64_t evaluateInner(Worker& worker, double s, KronrodPiece& piece) const {
     std::vector<double>& samples = worker.samples;
     samples.resize(values_ * std::size_t(pair_.points()));
     for (int j = 0; j < pair_.points(); ++j) {
@@ -281,7 +281,7 @@ class CriticalLineCubature {
   std::vector<ReceiverSegment> segments_;
   ExactGoldOptions options_;
   std::size_t values_;
-  std::vector<Piece> initial_;
+  std::vector<KronrodPiece> initial_;
   std::uint64_t points_ = 0;
 };
 

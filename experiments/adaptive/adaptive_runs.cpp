@@ -9,6 +9,7 @@
 
 #include "experiments/atomic_file.h"
 #include "experiments/scene_input.h"
+#include "experiments/solve_report.h"
 #include "kernel/input_error.h"
 #include "radiosity/render.h"
 
@@ -55,24 +56,6 @@ std::unique_ptr<Solver> solveWith(const Scene& scene, const std::string& sceneNa
   return solver;
 }
 
-nlohmann::json runJson(const Solver& solver) {
-  const SolveStatistics& s = solver.statistics();
-  return {{"kernel_evaluations", s.kernelEvaluations},
-          {"elapsed_seconds", s.elapsedSeconds},
-          {"coupling_seconds", s.couplingSeconds},
-          {"coupling_store_bytes", s.couplingStoreBytes},
-          {"coupling_computations", s.couplingComputations},
-          {"recomputations", s.recomputations},
-          {"recomputation_kernel_evaluations", s.recomputationEvaluations},
-          {"composite_kernel_evaluations", s.compositeEvaluations},
-          {"elements", solver.hierarchy().size()},
-          {"iterations", s.iterations},
-          {"links",
-           {{"unoccluded", s.unoccludedLinks},
-            {"partial", s.partialLinks},
-            {"occluded", s.occludedLinks}}}};
-}
-
 // The wall times of repeated solves of one configuration; the fastest is the measurement
 // (the others differ by what else the machine was doing).
 struct Timings {
@@ -104,24 +87,7 @@ void setTimes(nlohmann::json& run, const Timings& timings) {
 
 void addComparison(nlohmann::json& run, const Solver& solver, const Timings& times,
                    const Solver& fixed, const Timings& fixedTimes) {
-  const auto [difference, norm] = solver.hierarchy().l2Difference(fixed.hierarchy());
-  const SolveStatistics& s = solver.statistics();
-  const SolveStatistics& f = fixed.statistics();
-  run["relative_l2_difference"] = norm > 0.0 ? difference / norm : 0.0;
-  run["largest_patch_difference"] =
-      patchDifferenceJson(solver.hierarchy().largestPatchDifference(fixed.hierarchy()),
-                          solver.hierarchy().scene());
-  run["evaluation_ratio"] = double(f.kernelEvaluations) / double(s.kernelEvaluations);
-  // The same over the links integrated with one product rule (the composite rules of touching
-  // or plane-cut links apart; the kernel check's evaluations count with the product links).
-  const std::uint64_t productEvaluations = s.kernelEvaluations - s.compositeEvaluations;
-  run["product_link_evaluation_ratio"] =
-      productEvaluations > 0
-          ? double(f.kernelEvaluations - f.compositeEvaluations) / double(productEvaluations)
-          : 0.0;
-  run["composite_evaluation_ratio"] =
-      s.compositeEvaluations > 0 ? double(f.compositeEvaluations) / double(s.compositeEvaluations)
-                                 : 0.0;
+  run.update(comparisonJson(solver, fixed));
   run["time_ratio"] = fixedTimes.bestElapsed() / times.bestElapsed();
   run["coupling_time_ratio"] = fixedTimes.bestCoupling() / times.bestCoupling();
 }
@@ -197,7 +163,7 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
                             {"theoretical_best", (degree + 1) * (degree + 1)},
                             {"report_observed", reportObserved(degree)}};
       for (RuleChoice choice : kChoices) {
-        nlohmann::json run = runJson(*solvers[choice]);
+        nlohmann::json run = solveStatisticsJson(*solvers[choice]);
         setTimes(run, timings[choice]);
         if (choice != RuleChoice::kFixed) {
           addComparison(run, *solvers[choice], timings[choice], fixed, timings[RuleChoice::kFixed]);
@@ -223,7 +189,7 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
     for (RuleChoice choice : {RuleChoice::kAdaptive, RuleChoice::kAdaptiveNoVisibility}) {
       const auto solver = solveWith(sweepScene, options.sweepScene, options.sweepDegree, choice,
                                     threshold, options.sweepBfEpsilon, options.quiet);
-      nlohmann::json run = runJson(*solver);
+      nlohmann::json run = solveStatisticsJson(*solver);
       addComparison(run, *solver, timingsOf(*solver), *fixed, timingsOf(*fixed));
       run["threshold"] = threshold;
       run["rules"] = ruleChoiceName(choice);
@@ -233,7 +199,7 @@ nlohmann::json runAdaptiveExperiments(const AdaptiveRunOptions& options,
   nlohmann::json sweep = {{"scene", options.sweepScene},
                           {"degree", options.sweepDegree},
                           {"bf_eps", options.sweepBfEpsilon},
-                          {"fixed", runJson(*fixed)},
+                          {"fixed", solveStatisticsJson(*fixed)},
                           {"points", points}};
 
   return {{"options",

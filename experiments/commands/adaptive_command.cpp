@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include "experiments/adaptive/adaptive_runs.h"
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
+#include "experiments/solve_report.h"
 #include "experiments/study/study_output.h"
 #include "kernel/input_error.h"
 #include "radiosity/scene.h"
@@ -66,9 +68,10 @@ void runAdaptive(const AdaptiveCommandOptions& command) {
 
   nlohmann::json out = runAdaptiveExperiments(command.runs, results / "plate1");
   // Times change from run to run: they go to the run record (results/adaptive.run.json).
-  const nlohmann::json record = splitRunRecord(
-      out, {"elapsed_seconds", "coupling_seconds", "elapsed_seconds_runs", "coupling_seconds_runs",
-            "time_ratio", "coupling_time_ratio"});
+  std::vector<std::string> timingKeys = {"elapsed_seconds_runs", "coupling_seconds_runs",
+                                         "time_ratio", "coupling_time_ratio"};
+  timingKeys.insert(timingKeys.end(), std::begin(kSolveTimingKeys), std::end(kSolveTimingKeys));
+  const nlohmann::json record = splitRunRecord(out, timingKeys);
   writeFileAtomically(results / "adaptive.json", out.dump(2) + "\n");
   writeRunRecord(results / "adaptive.json", record);
   if (!command.runs.quiet)

@@ -19,6 +19,7 @@
 #include "experiments/atomic_file.h"
 #include "experiments/commands/commands.h"
 #include "experiments/scene_input.h"
+#include "experiments/solve_report.h"
 #include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "radiosity/render.h"
@@ -27,24 +28,16 @@
 namespace radquad {
 namespace {
 
+// The command line binds straight into the solver's options; the names given as text (rules,
+// dropped orders) and the memory budget in MiB are resolved by runSolve.
 struct SolveCommandOptions {
   std::string scene;
-  int degree = 0;
-  std::string rules = "fixed";
-  double threshold = kDefaultErrThres;
-  double kernelCurvature = kDefaultKernelCurvature;
+  SolverOptions solver;
+  std::string rules = ruleChoiceName(RuleChoice::kFixed);
   std::string droppedOrders = droppedOrdersName(DroppedOrders::kTruncated);
+  std::size_t maxMemoryMiB = SolverOptions{}.maxMemoryBytes >> 20;
   bool compare = false;
   std::string renderPath;
-  double bfEpsilon = SolverOptions{}.bfEpsilon;
-  double minArea = SolverOptions{}.minArea;
-  double partialFactor = SolverOptions{}.partialFactor;
-  double tolerance = SolverOptions{}.tolerance;
-  int maxIterations = SolverOptions{}.maxIterations;
-  std::size_t maxElements = SolverOptions{}.maxElements;
-  std::size_t maxLinks = SolverOptions{}.maxLinks;
-  std::size_t maxMemoryMiB = SolverOptions{}.maxMemoryBytes >> 20;
-  int singularDepth = SolverOptions{}.singularDepth;
   int threads = 0;
   bool quiet = false;
   std::string verifySamples;  // empty: no verification
@@ -65,27 +58,30 @@ RuleChoice parseRuleChoice(const std::string& name) {
 }
 
 void runSolve(const SolveCommandOptions& command) {
-  if (command.degree < 0 || command.degree > 3) {
-    throw InputError("--degree " + std::to_string(command.degree) + ": must be 0, 1, 2 or 3");
+  SolverOptions options = command.solver;
+  if (options.degree < 0 || options.degree > 3) {
+    throw InputError("--degree " + std::to_string(options.degree) + ": must be 0, 1, 2 or 3");
   }
-  const RuleChoice rules = parseRuleChoice(command.rules);
-  if (!(command.threshold >= 0.0) || !std::isfinite(command.threshold)) {
+  options.rules = parseRuleChoice(command.rules);
+  if (!(options.errThres >= 0.0) || !std::isfinite(options.errThres)) {
     throw InputError("--threshold: must be a finite number >= 0");
   }
-  if (!(command.kernelCurvature >= 0.0) || !std::isfinite(command.kernelCurvature)) {
+  if (!(options.kernelCurvature >= 0.0) || !std::isfinite(options.kernelCurvature)) {
     throw InputError("--kernel-curvature: must be a finite number >= 0 (0: no kernel check)");
   }
-  DroppedOrders droppedOrders = DroppedOrders::kTruncated;
   if (command.droppedOrders == droppedOrdersName(DroppedOrders::kAliased)) {
-    droppedOrders = DroppedOrders::kAliased;
-  } else if (command.droppedOrders != droppedOrdersName(DroppedOrders::kTruncated)) {
+    options.droppedOrders = DroppedOrders::kAliased;
+  } else if (command.droppedOrders == droppedOrdersName(DroppedOrders::kTruncated)) {
+    options.droppedOrders = DroppedOrders::kTruncated;
+  } else {
     throw InputError("--dropped-orders " + command.droppedOrders +
                      ": unknown treatment (valid: truncated, aliased)");
   }
-  if (!(command.bfEpsilon > 0.0)) throw InputError("--bf-eps: must be > 0");
-  if (!(command.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
-  if (!(command.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
-  if (!(command.tolerance > 0.0)) throw InputError("--tolerance: must be > 0");
+  if (!(options.bfEpsilon > 0.0)) throw InputError("--bf-eps: must be > 0");
+  if (!(options.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
+  if (!(options.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
+  if (!(options.tolerance > 0.0)) throw InputError("--tolerance: must be > 0");
+  options.maxMemoryBytes = command.maxMemoryMiB << 20;
   TraceOptions verify;
   verify.seed = parseDecimalOption(command.verifySeed, "--verify-seed", 0, ~std::uint64_t(0));
   if (!command.verifySamples.empty()) {
@@ -100,21 +96,6 @@ void runSolve(const SolveCommandOptions& command) {
   if (command.threads > 0) {
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(command.threads));
   }
-  SolverOptions options;
-  options.degree = command.degree;
-  options.rules = rules;
-  options.errThres = command.threshold;
-  options.kernelCurvature = command.kernelCurvature;
-  options.droppedOrders = droppedOrders;
-  options.bfEpsilon = command.bfEpsilon;
-  options.minArea = command.minArea;
-  options.partialFactor = command.partialFactor;
-  options.tolerance = command.tolerance;
-  options.maxIterations = command.maxIterations;
-  options.maxElements = command.maxElements;
-  options.maxLinks = command.maxLinks;
-  options.maxMemoryBytes = command.maxMemoryMiB << 20;
-  options.singularDepth = command.singularDepth;
   if (!command.quiet) {
     options.linkingProgress = [](const LinkingProgress& progress) {
       std::fprintf(stderr,
@@ -142,7 +123,7 @@ void runSolve(const SolveCommandOptions& command) {
   }
   if (!command.quiet) {
     std::fprintf(stderr, "radquad solve: %s, degree %d, %s rules\n", command.scene.c_str(),
-                 command.degree, ruleChoiceName(rules));
+                 options.degree, ruleChoiceName(options.rules));
   }
   Solver solver(scene, options);
   solver.solve();
@@ -157,75 +138,19 @@ void runSolve(const SolveCommandOptions& command) {
                        {"area", scene.patches[p].patch.area},
                        {"mean_radiosity", vectorJson(solved.back())}});
   }
-  nlohmann::json out = {
-      {"scene", command.scene},
-      {"options",
-       {{"degree", command.degree},
-        {"rules", command.rules},
-        {"threshold", options.errThres},
-        {"kernel_curvature", options.kernelCurvature},
-        {"dropped_orders", droppedOrdersName(options.droppedOrders)},
-        {"bf_eps", options.bfEpsilon},
-        {"min_area", solver.minArea()},
-        {"partial_factor", options.partialFactor},
-        {"tolerance", options.tolerance},
-        {"max_iterations", options.maxIterations},
-        {"max_elements", options.maxElements},
-        {"max_links", options.maxLinks},
-        {"max_memory_mib", options.maxMemoryBytes >> 20},
-        {"singular_depth", options.singularDepth},
-        {"iteration", "jacobi"}}},
-      {"kernel_evaluations", statistics.kernelEvaluations},
-      {"coupling_computations", statistics.couplingComputations},
-      {"recomputations", statistics.recomputations},
-      {"recomputation_kernel_evaluations", statistics.recomputationEvaluations},
-      {"composite_kernel_evaluations", statistics.compositeEvaluations},
-      {"rule_check_kernel_evaluations", statistics.ruleCheckEvaluations},
-      {"links",
-       {{"unoccluded", statistics.unoccludedLinks},
-        {"partial", statistics.partialLinks},
-        {"occluded", statistics.occludedLinks},
-        {"refined", statistics.refinedLinks}}},
-      {"rays",
-       {{"classification", statistics.classificationRays},
-        {"integration", statistics.integrationRays}}},
-      {"elements", hierarchy.size()},
-      {"iterations", statistics.iterations},
-      {"converged", statistics.converged},
-      {"failure", statistics.failure},
-      {"form_factor_sums",
-       {{"maximum", statistics.formFactorSums.maximum},
-        {"patch", statistics.formFactorSums.patch >= 0
-                      ? nlohmann::json(scene.patches[std::size_t(statistics.formFactorSums.patch)].name)
-                      : nlohmann::json(nullptr)},
-        {"tolerance", kFormFactorSumTolerance},
-        {"violations", statistics.formFactorSums.violations}}},
-      {"final_change", statistics.finalChange},
-      {"elapsed_seconds", statistics.elapsedSeconds},
-      {"coupling_seconds", statistics.couplingSeconds},
-      {"coupling_store_bytes", statistics.couplingStoreBytes},
-      {"kernel_evaluations_per_second",
-       statistics.elapsedSeconds > 0.0
-           ? double(statistics.kernelEvaluations) / statistics.elapsedSeconds
-           : 0.0},
-      {"patches", patches},
-  };
+  nlohmann::json out = solveStatisticsJson(solver);
+  out["scene"] = command.scene;
+  out["options"] = solverOptionsJson(solver);
+  out["patches"] = patches;
   if (command.compare) {
     if (!command.quiet) std::fprintf(stderr, "radquad solve: the same scene with fixed rules\n");
     SolverOptions fixedOptions = options;
     fixedOptions.rules = RuleChoice::kFixed;
     Solver fixed(scene, fixedOptions);
     fixed.solve();
-    const auto [difference, norm] = hierarchy.l2Difference(fixed.hierarchy());
-    out["comparison"] = {
-        {"fixed_kernel_evaluations", fixed.statistics().kernelEvaluations},
-        {"fixed_composite_kernel_evaluations", fixed.statistics().compositeEvaluations},
-        {"fixed_elapsed_seconds", fixed.statistics().elapsedSeconds},
-        {"fixed_coupling_seconds", fixed.statistics().couplingSeconds},
-        {"relative_l2_difference", norm > 0.0 ? difference / norm : 0.0},
-        {"largest_patch_difference",
-         patchDifferenceJson(hierarchy.largestPatchDifference(fixed.hierarchy()), scene)},
-    };
+    out["comparison"] = comparisonJson(solver, fixed);
+    out["comparison"]["fixed_elapsed_seconds"] = fixed.statistics().elapsedSeconds;
+    out["comparison"]["fixed_coupling_seconds"] = fixed.statistics().couplingSeconds;
   }
   if (statistics.formFactorSums.violations > 0) {
     std::fprintf(stderr,
@@ -262,19 +187,19 @@ void addSolveCommand(CLI::App& app) {
       ->add_option("scene", options->scene,
                    "A scene JSON file, or a built-in scene: cornell, slats")
       ->required();
-  command->add_option("--degree", options->degree, "Basis degree d, 0..3")->capture_default_str();
+  command->add_option("--degree", options->solver.degree, "Basis degree d, 0..3")->capture_default_str();
   command
       ->add_option("--rules", options->rules,
                    "Gauss rule choice per link: fixed ((d+1)^4 points), adaptive (Gershbein 1995, "
                    "Figure 4), adaptive-novis (without the partial-visibility point)")
       ->capture_default_str();
   command
-      ->add_option("--threshold", options->threshold,
+      ->add_option("--threshold", options->solver.errThres,
                    "ErrThres of the adaptive rules, as a fraction of the scene's emitted "
                    "radiosity (emitted power over total area)")
       ->capture_default_str();
   command
-      ->add_option("--kernel-curvature", options->kernelCurvature,
+      ->add_option("--kernel-curvature", options->solver.kernelCurvature,
                    "Adaptive rules: a one-point source axis whose estimated midpoint error "
                    "(relative) exceeds this gets two points; 0: Figure 4's choice alone")
       ->capture_default_str();
@@ -289,31 +214,31 @@ void addSolveCommand(CLI::App& app) {
   command->add_option("--render", options->renderPath,
                       "Write a PNG of the solution from the scene's camera");
   command
-      ->add_option("--bf-eps", options->bfEpsilon,
+      ->add_option("--bf-eps", options->solver.bfEpsilon,
                    "BF oracle threshold, relative to the emitted power per unit scene area")
       ->capture_default_str();
   command
-      ->add_option("--min-area", options->minArea,
+      ->add_option("--min-area", options->solver.minArea,
                    "Smallest element area to split (scene units^2; 0: 1e-4 of the largest patch)")
       ->capture_default_str();
   command
-      ->add_option("--partial-factor", options->partialFactor,
+      ->add_option("--partial-factor", options->solver.partialFactor,
                    "Multiplier of a partially visible link's transfer estimate")
       ->capture_default_str();
   command
-      ->add_option("--tolerance", options->tolerance,
+      ->add_option("--tolerance", options->solver.tolerance,
                    "Stop when the relative L2 change of patch radiosity is below this")
       ->capture_default_str();
-  command->add_option("--max-iterations", options->maxIterations, "Iteration cap")
+  command->add_option("--max-iterations", options->solver.maxIterations, "Iteration cap")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   command
-      ->add_option("--max-elements", options->maxElements,
+      ->add_option("--max-elements", options->solver.maxElements,
                    "Element budget: the solve fails (exit 3) when refinement would exceed it")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
       ->capture_default_str();
   command
-      ->add_option("--max-links", options->maxLinks,
+      ->add_option("--max-links", options->solver.maxLinks,
                    "Link budget: the solve fails (exit 3) when refinement would exceed it")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40))
       ->capture_default_str();
@@ -324,7 +249,7 @@ void addSolveCommand(CLI::App& app) {
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))
       ->capture_default_str();
   command
-      ->add_option("--singular-depth", options->singularDepth,
+      ->add_option("--singular-depth", options->solver.singularDepth,
                    "Quadrant subdivision levels for links between touching elements")
       ->check(CLI::Range(0, 8))
       ->capture_default_str();

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `radquad solve --rules adaptive --compare` through the real binary on a small scene: exit 0,
 # the comparison fields, a small difference from the fixed solution, fewer kernel
-# evaluations; bad rule options exit with status 2 and say which option; `radquad adaptive`'s
+# evaluations, the ratios recomputed from the counts; the adaptive table reports the same
+# statistics; bad rule options exit with status 2 and say which option; `radquad adaptive`'s
 # timing repeats on a tiny table.
 # Usage: RADQUAD=PATH/TO/radquad adaptive_cli_test.sh (or the path as the first argument)
 set -u
@@ -32,10 +33,21 @@ assert out["options"]["rules"] in ("adaptive", "adaptive-novis"), out["options"]
 assert set(c) >= {"fixed_kernel_evaluations", "fixed_elapsed_seconds", "relative_l2_difference"}
 assert 0 <= c["relative_l2_difference"] < 0.01, c
 assert out["kernel_evaluations"] < c["fixed_kernel_evaluations"], (out["kernel_evaluations"], c)
+# The ratios, recomputed from the reported counts.
+def close(a, b): return abs(a - b) <= 1e-12 * abs(b)
+assert close(c["evaluation_ratio"], c["fixed_kernel_evaluations"] / out["kernel_evaluations"]), c
+own = out["kernel_evaluations"] - out["composite_kernel_evaluations"]
+fixed = c["fixed_kernel_evaluations"] - c["fixed_composite_kernel_evaluations"]
+assert close(c["product_link_evaluation_ratio"], fixed / own), c
+if out["composite_kernel_evaluations"] > 0:
+    assert close(c["composite_evaluation_ratio"],
+                 c["fixed_composite_kernel_evaluations"] / out["composite_kernel_evaluations"]), c
+assert out["converged"] is True and out["failure"] == "", out
 PY
   then
     echo "FAIL: $rules --compare output"; failures=$((failures + 1))
   fi
+  cp "$work/out" "$work/solve-$rules.json"
 done
 
 # `radquad adaptive` on a tiny table with two timing repeats: every run listed, the fastest
@@ -49,12 +61,21 @@ mkdir -p "$work/adaptive"
 expect_status 0 "adaptive, two timing repeats" "" adaptive --scenes cornell --degrees 1 \
   --bf-eps 1 --sweep 1 --sweep-bf-eps 1 --sweep-degree 1 --timing-repeats 2 \
   --results "$work/adaptive" --plots "$work/adaptive" --quiet
-if ! /usr/bin/python3 - "$work/adaptive/adaptive.json" "$work/adaptive/adaptive.run.json" <<'PY'
+if ! /usr/bin/python3 - "$work/adaptive/adaptive.json" "$work/adaptive/adaptive.run.json" \
+    "$work/solve-adaptive.json" <<'PY'
 import json, sys
 out = json.load(open(sys.argv[1]))
 assert out["options"]["timing_repeats"] == 2, out["options"]
 text = open(sys.argv[1]).read()
 assert "seconds" not in text and "time_ratio" not in text and "commit" not in text, "times in the result"
+assert "per_second" not in text, "a rate in the result"
+# A run of the table reports what `radquad solve --compare` reports, but for times.
+solved = json.load(open(sys.argv[3]))
+statistics = set(solved) - {"scene", "options", "patches", "comparison", "elapsed_seconds",
+                            "coupling_seconds", "kernel_evaluations_per_second"}
+comparison = set(solved["comparison"]) - {"fixed_elapsed_seconds", "fixed_coupling_seconds"}
+run = out["table"][0]["adaptive"]
+assert set(run) >= statistics | comparison, (statistics | comparison) - set(run)
 record = json.load(open(sys.argv[2]))  # the times, in the result's shape
 assert record["result"] == "adaptive.json" and "git_commit" in record, record.keys()
 assert set(out["table"][0]) >= set(record["table"][0]) - {"scene", "degree"}
