@@ -55,7 +55,7 @@ KindLinks partialLinks(OccluderKind kind) {
   for (std::uint64_t i = 0; out.generated.size() < kLinksPerKind && i < 100000; ++i) {
     GeneratedLink generated = generateLink(ranges, StudyClass::partial, deriveSeed(1, {1, i, 0}));
     if (generated.occluderKind != kind) continue;
-    auto scene = generated.buildScene();
+    auto scene = generated.occluderScene();
     const Link link{generated.receiver, generated.source, scene.get()};
     LinkIntegral probed;
     probe.integrate(link, 0, accumulator, probed);

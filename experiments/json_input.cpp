@@ -125,12 +125,11 @@ Patch parsePatch(const nlohmann::json& value, const std::string& where,
                      finiteVector3(value["edge_v"], where + ".edge_v"), where);
 }
 
-LinkDescription parseLink(const nlohmann::json& value, const std::string& where) {
+LinkGeometry parseLink(const nlohmann::json& value, const std::string& where) {
   checkKeys(value, where, {"receiver", "source", "occluders"}, {"receiver", "source"});
-  LinkDescription link{parsePatch(value["receiver"], where + ": receiver"),
-                       parsePatch(value["source"], where + ": source"),
-                       {},
-                       {}};
+  LinkGeometry link;
+  link.receiver = parsePatch(value["receiver"], where + ": receiver");
+  link.source = parsePatch(value["source"], where + ": source");
   if (const auto crossing = patchesInterpenetrate(link.receiver, link.source)) {
     throw InputError(where + ": receiver and source " + *crossing +
                      " (the kernel is not integrable there; touching along an edge is allowed)");
@@ -158,36 +157,17 @@ LinkDescription parseLink(const nlohmann::json& value, const std::string& where)
         if (!((triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).norm() > 0.0)) {
           throw InputError(name + ".triangle: degenerate (zero area)");
         }
-        link.triangles.push_back(triangle);
+        link.addTriangle(triangle[0], triangle[1], triangle[2]);
         continue;
       }
-      link.occluders.push_back(parsePatch(occluders[k], name));
+      link.parallelograms.push_back(parsePatch(occluders[k], name));
     }
   }
   return link;
 }
 
-LinkDescription readLinkFile(const std::filesystem::path& path) {
+LinkGeometry readLinkFile(const std::filesystem::path& path) {
   return parseLink(readJsonFile(path), path.string());
-}
-
-SceneLink buildSceneLink(const LinkDescription& description) {
-  SceneLink built;
-  built.scene = std::make_unique<OccluderScene>();
-  for (const Patch& occluder : description.occluders) built.scene->addParallelogram(occluder);
-  if (!description.triangles.empty()) {
-    std::vector<Eigen::Vector3d> vertices;
-    std::vector<std::array<std::uint32_t, 3>> indices;
-    for (const auto& triangle : description.triangles) {
-      const std::uint32_t first = std::uint32_t(vertices.size());
-      vertices.insert(vertices.end(), triangle.begin(), triangle.end());
-      indices.push_back({first, first + 1, first + 2});
-    }
-    built.scene->addTriangleMesh(vertices, indices);
-  }
-  built.scene->commit();
-  built.link = Link{description.receiver, description.source, built.scene.get()};
-  return built;
 }
 
 nlohmann::json patchToJson(const Patch& patch) {

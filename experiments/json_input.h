@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "kernel/coupling.h"
+#include "kernel/link_geometry.h"
 #include "kernel/occluder_scene.h"
 #include "kernel/patch.h"
 
@@ -48,22 +49,10 @@ Eigen::Vector3d finiteVector3(const nlohmann::json& value, const std::string& wh
 Patch parsePatch(const nlohmann::json& value, const std::string& where,
                  std::initializer_list<const char*> extraKeys = {});
 
-// LINK.json = {"receiver": PATCH, "source": PATCH, "occluders": [PATCH, ...]}.
-struct LinkDescription {
-  Patch receiver;
-  Patch source;
-  std::vector<Patch> occluders;  // parallelograms {origin, edge_u, edge_v}
-  std::vector<std::array<Eigen::Vector3d, 3>> triangles;  // occluders {"triangle": [a, b, c]}
-};
-LinkDescription parseLink(const nlohmann::json& value, const std::string& where);
-LinkDescription readLinkFile(const std::filesystem::path& path);
-
-// A link with its own occluder scene (committed), ready to integrate.
-struct SceneLink {
-  std::unique_ptr<OccluderScene> scene;
-  Link link;
-};
-SceneLink buildSceneLink(const LinkDescription& description);
+// LINK.json = {"receiver": PATCH, "source": PATCH, "occluders": [OCCLUDER, ...]}, an occluder
+// a parallelogram PATCH or a triangle {"triangle": [a, b, c]}.
+LinkGeometry parseLink(const nlohmann::json& value, const std::string& where);
+LinkGeometry readLinkFile(const std::filesystem::path& path);
 
 nlohmann::json patchToJson(const Patch& patch);
 // An occluder polygon as a link file writes it: a parallelogram (4 corners in Patch::corners

@@ -115,7 +115,7 @@ void addWarnings(nlohmann::json& out, const nlohmann::json& warnings, std::ostre
 
 }  // namespace
 
-nlohmann::json linkReport(const LinkDescription& description,
+nlohmann::json linkReport(const LinkGeometry& description,
                           const std::shared_ptr<const Rule>& rule,
                           const LinkReportOptions& options, const std::string& where,
                           std::ostream* log) {
@@ -126,7 +126,7 @@ nlohmann::json linkReport(const LinkDescription& description,
   checkSampleBudget(*rule, rule->isRandom() ? options.trials : 1, "rule " + rule->name());
   checkDrawCount(*rule, options.trials, "trials");
   const PreparedRule prepared(rule, options.degree);
-  const SceneLink sceneLink = buildSceneLink(description);
+  const BuiltLink sceneLink = description.build();
   // Trials of a random rule: trial 0 (seed S) is the reported coupling, integrated once.
   const bool trials = options.trials > 1 && prepared.rule().isRandom();
   LinkIntegral integral;
@@ -171,10 +171,10 @@ nlohmann::json linkReport(const LinkDescription& description,
   return out;
 }
 
-nlohmann::json referenceReport(const LinkDescription& description,
+nlohmann::json referenceReport(const LinkGeometry& description,
                                const ReferenceReportOptions& options, const std::string& link,
                                std::ostream* log) {
-  const SceneLink sceneLink = buildSceneLink(description);
+  const BuiltLink sceneLink = description.build();
   ReferenceOptions referenceOptions;
   referenceOptions.replicates = options.replicates;
   const ReferenceEstimate estimate =

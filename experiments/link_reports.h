@@ -1,5 +1,5 @@
 // The JSON objects `radquad link` and `radquad reference` print, for a link given as a
-// LinkDescription: shared by the command line and the Python module (python/), so that both
+// LinkGeometry: shared by the command line and the Python module (python/), so that both
 // give the same numbers, bit for bit.
 #pragma once
 
@@ -27,7 +27,7 @@ struct LinkReportOptions {
 // Warnings, and a deterministic rule's ignored trials, are also written to `log` when given.
 // InputError when the seeds would pass 2^64 - 1; ComputationError on a non-finite coupling
 // (`where` names the link in messages).
-nlohmann::json linkReport(const LinkDescription& description,
+nlohmann::json linkReport(const LinkGeometry& description,
                           const std::shared_ptr<const Rule>& rule,
                           const LinkReportOptions& options, const std::string& where,
                           std::ostream* log);
@@ -46,7 +46,7 @@ struct ReferenceReportOptions {
 // reference_minus_gold; `warnings` (near-singular link, form factor outside [0, 1], the
 // reference more than 5 standard errors from the gold) when there are any, also written to
 // `log` when given.
-nlohmann::json referenceReport(const LinkDescription& description,
+nlohmann::json referenceReport(const LinkGeometry& description,
                                const ReferenceReportOptions& options, const std::string& link,
                                std::ostream* log = nullptr);
 

@@ -167,6 +167,22 @@ void evaluateKernel(const PlacedPoints& r, std::size_t nr, const PlacedPoints& s
 
 }  // namespace
 
+void CouplingAccumulator::scaleCoupling(const Link& link, double weightScale,
+                                        LinkIntegral& result) {
+  const double receiverArea = link.receiver.area, sourceArea = link.source.area;
+  result.coupling *= weightScale * std::sqrt(receiverArea * sourceArea) / std::numbers::pi;
+  result.formFactor = result.coupling(0, 0) * std::sqrt(sourceArea / receiverArea);
+}
+
+void CouplingAccumulator::placeLink(const Link& link, const double* ru, const double* rv,
+                                    std::size_t nr, const double* su, const double* sv,
+                                    std::size_t ns) {
+  placePoints(link.receiver, ru, rv, nr, link.source.normal, receiverX_, receiverY_, receiverZ_,
+              receiverNormalDot_, receiverSourceDot_);
+  placePoints(link.source, su, sv, ns, link.receiver.normal, sourceX_, sourceY_, sourceZ_,
+              sourceNormalDot_, sourceReceiverDot_);
+}
+
 void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver,
                                   const WeightedBasisTable& receiverBasis,
                                   const PatchSamples& source, const WeightedBasisTable& sourceBasis,
@@ -175,12 +191,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
   RADQUAD_REQUIRE(receiverBasis.points() == receiver.size() && sourceBasis.points() == source.size());
   const std::size_t nr = receiver.size();
   const std::size_t ns = source.size();
-  const Patch& r = link.receiver;
-  const Patch& s = link.source;
-  placePoints(r, receiver.u.data(), receiver.v.data(), nr, s.normal, receiverX_, receiverY_,
-              receiverZ_, receiverNormalDot_, receiverSourceDot_);
-  placePoints(s, source.u.data(), source.v.data(), ns, r.normal, sourceX_, sourceY_, sourceZ_,
-              sourceNormalDot_, sourceReceiverDot_);
+  placeLink(link, receiver.u.data(), receiver.v.data(), nr, source.u.data(), source.v.data(), ns);
 
   const std::size_t pairs = nr * ns;
   kernel_.resize(pairs);
@@ -227,8 +238,7 @@ void CouplingAccumulator::product(const Link& link, const PatchSamples& receiver
   (ns < nr ? kContractSourceLast : kContract)[degree](
       nr, ns, kernel_.data(), receiverBasis.values.data(), sourceBasis.values.data(),
       partial_.data(), result.coupling.data());
-  result.coupling *= std::sqrt(r.area * s.area) / std::numbers::pi;
-  result.formFactor = result.coupling(0, 0) * std::sqrt(s.area / r.area);
+  scaleCoupling(link, 1.0, result);
   result.kernelEvaluations = nr * ns;
 }
 

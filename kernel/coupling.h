@@ -78,6 +78,13 @@ class CouplingAccumulator {
   void streamed(const Link& link, const PointStream& points, int degree, LinkIntegral& result);
 
  private:
+  // The "place" step of every path: the receiver's points (ru, rv)[0..nr) and the source's
+  // (su, sv)[0..ns) in 3D, with the cosines each side needs, into the placed-point columns.
+  void placeLink(const Link& link, const double* ru, const double* rv, std::size_t nr,
+                 const double* su, const double* sv, std::size_t ns);
+  // The "contract" step's last factor: the accumulated sums, times weightScale (the points'
+  // common weight, 1 when the weights were applied), become K and the form factor.
+  static void scaleCoupling(const Link& link, double weightScale, LinkIntegral& result);
   // Traces segments_ (segment r belongs to kernel value rayPairs_[r]) and zeroes the kernel
   // where they are blocked.
   void castRays(const Link& link, std::vector<double>& kernel, LinkIntegral& result);

@@ -13,18 +13,13 @@
 
 namespace radquad {
 using detail::kernelTimesPi;
-using detail::placePoints;
 
 void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples, int degree,
                                     LinkIntegral& result) {
   validateBasisDegree(degree);
   const std::size_t count = samples.size();
-  const Patch& r = link.receiver;
-  const Patch& s = link.source;
-  placePoints(r, samples.s.data(), samples.t.data(), count, s.normal, receiverX_, receiverY_,
-              receiverZ_, receiverNormalDot_, receiverSourceDot_);
-  placePoints(s, samples.u.data(), samples.v.data(), count, r.normal, sourceX_, sourceY_, sourceZ_,
-              sourceNormalDot_, sourceReceiverDot_);
+  placeLink(link, samples.s.data(), samples.t.data(), count, samples.u.data(), samples.v.data(),
+            count);
   kernel_.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
     kernel_[k] = kernelTimesPi(
@@ -76,8 +71,7 @@ void CouplingAccumulator::scattered(const Link& link, const LinkSamples& samples
                             samples.u.data() + start, samples.v.data() + start, wg);
   }
   contraction_.end(result.coupling);
-  result.coupling *= std::sqrt(r.area * s.area) / std::numbers::pi;
-  result.formFactor = result.coupling(0, 0) * std::sqrt(s.area / r.area);
+  scaleCoupling(link, 1.0, result);
   result.kernelEvaluations = count;
 }
 

@@ -159,8 +159,7 @@ void CouplingAccumulator::streamed(const Link& link, const PointStream& points, 
   result.raysCast = cast;
   result.raysBlocked = blocked;
   // Equal weights 1/N, applied once to the sum.
-  result.coupling *= (1.0 / double(count)) * std::sqrt(r.area * s.area) / std::numbers::pi;
-  result.formFactor = result.coupling(0, 0) * std::sqrt(s.area / r.area);
+  scaleCoupling(link, 1.0 / double(count), result);
   result.kernelEvaluations = count;
 }
 

@@ -38,7 +38,7 @@ std::string checkRule(const std::string& ruleJson) {
 std::string integrate(const std::string& linkJson, const std::string& rule, int degree,
                       std::uint64_t seed, int trials) {
   if (trials < 1 || trials > 100000) throw InputError("trials must lie in 1..100000");
-  const LinkDescription description = parseLink(parseJsonText(linkJson, "link"), "link");
+  const LinkGeometry description = parseLink(parseJsonText(linkJson, "link"), "link");
   LinkReportOptions options;
   options.degree = degree;
   options.seed = seed;
@@ -53,7 +53,7 @@ std::string reference(const std::string& linkJson, int degree, std::uint64_t see
   if (!(goldTolerance >= 1e-15 && goldTolerance <= 0.5)) {
     throw InputError("gold_tolerance must lie in [1e-15, 0.5]");
   }
-  const LinkDescription description = parseLink(parseJsonText(linkJson, "link"), "link");
+  const LinkGeometry description = parseLink(parseJsonText(linkJson, "link"), "link");
   ReferenceReportOptions options;
   options.degree = degree;
   options.seed = seed;

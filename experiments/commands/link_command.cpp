@@ -31,7 +31,7 @@ void runLink(LinkOptions options) {
     throw InputError("--seed " + options.seedText + " with --trials " +
                      std::to_string(options.trials) + ": the last seed would pass 2^64 - 1");
   }
-  const LinkDescription description = readLinkFile(options.linkPath);
+  const LinkGeometry description = readLinkFile(options.linkPath);
   LinkReportOptions report;
   report.degree = options.degree;
   report.seed = options.seed;

@@ -48,7 +48,7 @@ void runReference(ReferenceCommandOptions options) {
                    static_cast<unsigned long long>(points), seconds);
     };
   }
-  const LinkDescription description = readLinkFile(options.linkPath);
+  const LinkGeometry description = readLinkFile(options.linkPath);
   ReferenceReportOptions report;
   report.degree = options.degree;
   report.seed = options.seed;

@@ -184,7 +184,7 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
       return;
     case OccluderKind::oneBlocker: {
       const double w = random.uniform(0.3, 1.0) * largest, h = random.uniform(0.3, 1.0) * largest;
-      link.blockers.push_back(
+      link.parallelograms.push_back(
           beamBlocker(random, from, to, random.uniform(0.3, 0.7), 0.3 * largest, w, h));
       return;
     }
@@ -193,7 +193,7 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
       for (int k = 0; k < count; ++k) {
         const double w = random.uniform(0.15, 0.5) * largest,
                      h = random.uniform(0.15, 0.5) * largest;
-        link.blockers.push_back(
+        link.parallelograms.push_back(
             beamBlocker(random, from, to, random.uniform(0.2, 0.8), 0.5 * largest, w, h));
       }
       return;
@@ -215,7 +215,7 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
           const double offset = (k + 0.5) * pitch - 0.5 * span;
           // The second set sits a hair behind the first so the two never coincide.
           const Eigen::Vector3d middle = centre + offset * across + set * 1e-3 * largest * axis;
-          link.blockers.push_back(centredPatch(middle, across, along, width, span, "slat"));
+          link.parallelograms.push_back(centredPatch(middle, across, along, width, span, "slat"));
         }
       }
       return;
@@ -228,13 +228,13 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
                                        random.uniform(-0.7, 0.7) * largest * p +
                                        random.uniform(-0.7, 0.7) * largest * q;
         const double size = random.logUniform(0.03, 0.12) * largest;
-        const auto first = std::uint32_t(link.soupVertices.size());
+        const auto first = std::uint32_t(link.vertices.size());
         for (int corner = 0; corner < 3; ++corner) {
-          link.soupVertices.push_back(centre + size * Eigen::Vector3d(random.uniform(-1, 1),
+          link.vertices.push_back(centre + size * Eigen::Vector3d(random.uniform(-1, 1),
                                                                       random.uniform(-1, 1),
                                                                       random.uniform(-1, 1)));
         }
-        link.soupTriangles.push_back({first, first + 1, first + 2});
+        link.triangles.push_back({first, first + 1, first + 2});
       }
       return;
     }
@@ -326,15 +326,6 @@ nlohmann::json geometryRangesToJson(const GeometryRanges& ranges) {
           {"max_tilt_degrees", ranges.maxTiltDegrees},
           {"occluders", occluders},
           {"soup_triangles", ranges.soupTriangles}};
-}
-
-std::unique_ptr<OccluderScene> GeneratedLink::buildScene() const {
-  if (!hasOccluders()) return nullptr;
-  auto scene = std::make_unique<OccluderScene>();
-  for (const Patch& blocker : blockers) scene->addParallelogram(blocker);
-  if (!soupTriangles.empty()) scene->addTriangleMesh(soupVertices, soupTriangles);
-  scene->commit();
-  return scene;
 }
 
 GeneratedLink generateLink(const GeometryRanges& ranges, StudyClass linkClass, std::uint64_t seed) {

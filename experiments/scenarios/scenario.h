@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "kernel/link_geometry.h"
 #include "kernel/occluder_scene.h"
 #include "kernel/patch.h"
 
@@ -63,19 +64,12 @@ struct GeometryRanges {
 GeometryRanges parseGeometryRanges(const nlohmann::json& value, const std::string& where);
 nlohmann::json geometryRangesToJson(const GeometryRanges& ranges);
 
-struct GeneratedLink {
-  Patch receiver;
-  Patch source;
+// A generated link: its geometry (blockers and slats as parallelograms, a soup as triangles)
+// and how it was drawn.
+struct GeneratedLink : LinkGeometry {
   Orientation orientation = Orientation::parallel;
   OccluderKind occluderKind = OccluderKind::none;
   double distanceFactor = 0.0;  // D / L
-  std::vector<Patch> blockers;  // parallelograms (blockers and slats)
-  std::vector<Eigen::Vector3d> soupVertices;
-  std::vector<std::array<std::uint32_t, 3>> soupTriangles;
-
-  bool hasOccluders() const { return !blockers.empty() || !soupTriangles.empty(); }
-  // The committed occluder scene; null when there is nothing in the way.
-  std::unique_ptr<OccluderScene> buildScene() const;
 };
 
 // The candidate link of `linkClass` drawn from `seed`. Unoccluded links have no occluders.

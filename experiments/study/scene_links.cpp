@@ -112,15 +112,16 @@ const SceneLinkEntry& SceneLinkPool::entry(StudyClass linkClass, std::size_t k) 
   return linkClass == StudyClass::partial ? partial_.at(k) : unoccluded_.at(k);
 }
 
-std::unique_ptr<OccluderScene> SceneLinkPool::occluders(const SceneLinkEntry& entry) const {
-  auto scene = std::make_unique<OccluderScene>();
+LinkGeometry SceneLinkPool::geometry(const SceneLinkEntry& entry) const {
+  LinkGeometry geometry;
+  geometry.receiver = entry.receiver;
+  geometry.source = entry.source;
   const Scene& own = scenes_.at(std::size_t(entry.scene));
   for (std::size_t p = 0; p < own.patches.size(); ++p) {
     if (int(p) == entry.receiverPatch || int(p) == entry.sourcePatch) continue;
-    scene->addParallelogram(own.patches[p].patch);
+    geometry.parallelograms.push_back(own.patches[p].patch);
   }
-  scene->commit();
-  return scene;
+  return geometry;
 }
 
 }  // namespace radquad

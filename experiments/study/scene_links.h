@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "experiments/scenarios/scenario.h"
-#include "kernel/occluder_scene.h"
+#include "kernel/link_geometry.h"
 #include "radiosity/scene.h"
 
 namespace radquad {
@@ -53,8 +53,8 @@ class SceneLinkPool {
   // Links of the class in sampling order (StudyClass::unoccluded or partial).
   std::size_t size(StudyClass linkClass) const;
   const SceneLinkEntry& entry(StudyClass linkClass, std::size_t k) const;
-  // The patches of the link's scene except its own two, committed.
-  std::unique_ptr<OccluderScene> occluders(const SceneLinkEntry& entry) const;
+  // The link with every patch of its scene but its own two as occluders.
+  LinkGeometry geometry(const SceneLinkEntry& entry) const;
   std::size_t totalLinks() const { return total_; }
   std::size_t occludedLinks() const { return occluded_; }
   const std::vector<std::string>& sceneNames() const { return names_; }

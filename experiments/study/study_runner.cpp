@@ -34,8 +34,7 @@ struct Scorers {
 
 // One candidate's geometry: generated from its seed, or taken from the scene's links.
 struct CandidateGeometry {
-  Patch receiver, source;
-  std::unique_ptr<OccluderScene> scene;
+  BuiltLink built;  // the link and its occluder scene
   Orientation orientation = Orientation::parallel;
   OccluderKind occluderKind = OccluderKind::none;
   std::string sceneName;  // scene-derived: the link's scene
@@ -59,14 +58,12 @@ CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& sc
                                     std::uint64_t index) {
   if (scorers.pool != nullptr) {
     const SceneLinkEntry& entry = scorers.pool->entry(linkClass, std::size_t(index));
-    return {entry.receiver, entry.source, scorers.pool->occluders(entry),
-            orientationOf(entry.receiver, entry.source), OccluderKind::scene,
-            scorers.pool->sceneNames().at(std::size_t(entry.scene))};
+    return {scorers.pool->geometry(entry).build(), orientationOf(entry.receiver, entry.source),
+            OccluderKind::scene, scorers.pool->sceneNames().at(std::size_t(entry.scene))};
   }
   const GeneratedLink generated =
       generateLink(config.geometry, linkClass, deriveSeed(config.seed, {classIndex, index, 0}));
-  return {generated.receiver, generated.source, generated.buildScene(), generated.orientation,
-          generated.occluderKind, {}};
+  return {generated.build(), generated.orientation, generated.occluderKind, {}};
 }
 
 struct Candidate {
@@ -91,14 +88,14 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
                        Candidate& out) {
   const CandidateGeometry generated =
       candidateGeometry(config, scorers, classIndex, linkClass, index);
-  const Link link{generated.receiver, generated.source, generated.scene.get()};
+  const Link& link = generated.built.link;
   // A generated occluder that passes through the receiver or the source is no physical
   // configuration (and its kernel is singular along the cut): such candidates are rejected
   // before anything is computed.
-  if (scorers.pool == nullptr && generated.scene != nullptr) {
-    for (const auto& polygon : generated.scene->polygons()) {
-      if (polygonCrossesPatch(polygon, generated.receiver) ||
-          polygonCrossesPatch(polygon, generated.source)) {
+  if (scorers.pool == nullptr && generated.built.scene != nullptr) {
+    for (const auto& polygon : generated.built.scene->polygons()) {
+      if (polygonCrossesPatch(polygon, link.receiver) ||
+          polygonCrossesPatch(polygon, link.source)) {
         out.record.candidate = index;
         out.occluderCrossesPatch = true;
         out.accepted = false;
@@ -114,7 +111,7 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.orientation = generated.orientation;
   record.occluderKind = generated.occluderKind;
   record.scene = generated.sceneName;
-  record.distanceFactor = distanceFactorOf(generated.receiver, generated.source);
+  record.distanceFactor = distanceFactorOf(link.receiver, link.source);
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;
   if (linkClass == StudyClass::partial && scorers.pool == nullptr) {
@@ -129,13 +126,13 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
   const std::uint64_t index = candidate.record.candidate;
   const CandidateGeometry generated =
       candidateGeometry(config, scorers, classIndex, linkClass, index);
-  const Link link{generated.receiver, generated.source, generated.scene.get()};
+  const Link& link = generated.built.link;
   const std::uint64_t referenceSeed = deriveSeed(config.seed, {classIndex, index, 1});
   LinkRecord& record = candidate.record;
   const ReferenceResult reference =
       scorers.reference.estimate(link, referenceSeed, candidate.draw, accumulator);
   const Eigen::MatrixXd& K = reference.integral.coupling;
-  const double area = generated.receiver.area;
+  const double area = link.receiver.area;
   record.referenceRelativeStandardError = reference.standardError(0, 0) / K(0, 0);
   record.referenceL1StandardError = l1ErrorBound(reference.standardError, area);
   GoldReference gold;
@@ -156,9 +153,9 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
   std::shared_ptr<LinkDetail> detail;
   if (scorers.keepDetails) {
     detail = std::make_shared<LinkDetail>();
-    detail->receiver = generated.receiver;
-    detail->source = generated.source;
-    if (generated.scene != nullptr) detail->occluders = generated.scene->polygons();
+    detail->receiver = link.receiver;
+    detail->source = link.source;
+    if (generated.built.scene != nullptr) detail->occluders = generated.built.scene->polygons();
     detail->reference = K;
     detail->referenceStandardError = reference.standardError;
     if (scorers.gold) {

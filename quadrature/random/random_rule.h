@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "quadrature/rule.h"
 
@@ -22,6 +23,23 @@ class RandomPointRule : public Rule {
     return drawn;
   }
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override = 0;
+};
+
+// A random rule of `count` points (MonteCarlo, NRook), named "PREFIX:count" unless given
+// another name.
+class CountedRandomRule : public RandomPointRule {
+ public:
+  std::string name() const override { return name_; }
+  std::size_t sampleCount() const override { return std::size_t(count_); }
+
+ protected:
+  CountedRandomRule(int count, std::string name, const std::string& prefix)
+      : count_(count),
+        name_(name.empty() ? prefix + ":" + std::to_string(count) : std::move(name)) {}
+
+ private:
+  int count_;
+  std::string name_;
 };
 
 // Resizes `out` to a 4D point set of `count` points of weight 1/count.

@@ -15,25 +15,21 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "quadrature/random/random_rule.h"
 
 namespace radquad {
 
-class MonteCarloRule : public RandomPointRule {
+class MonteCarloRule : public CountedRandomRule {
  public:
-  explicit MonteCarloRule(int count, std::string name = "");
+  explicit MonteCarloRule(int count, std::string name = "")
+      : CountedRandomRule(count, std::move(name), "MonteCarlo") {}
 
-  std::string name() const override { return name_; }
-  std::size_t sampleCount() const override { return std::size_t(count_); }
   static constexpr std::string_view kFamily = "Monte Carlo";  // also names its random streams
   std::string family() const override { return std::string(kFamily); }
   std::string citation() const override;
   void drawSamples(std::uint64_t seed, RuleSamples& out) const override;
-
- private:
-  int count_;
-  std::string name_;
 };
 
 std::shared_ptr<const Rule> makeMonteCarloRule(const std::string& parameter);

@@ -10,16 +10,13 @@
 
 namespace radquad {
 
-NRookRule::NRookRule(int count, std::string name)
-    : count_(count), name_(name.empty() ? "NRook:" + std::to_string(count) : std::move(name)) {}
-
 std::string NRookRule::citation() const {
   return "McKay, Beckman and Conover 1979 (Latin hypercube); Shirley 1991 (N-rooks); "
          "Gershbein 1995, section 3";
 }
 
 void NRookRule::drawSamples(std::uint64_t seed, RuleSamples& out) const {
-  const std::size_t count = std::size_t(count_);
+  const std::size_t count = sampleCount();
   resizeEqualWeights(count, out);
   thread_local std::array<std::vector<std::uint32_t>, 4> permutations;
   thread_local std::vector<std::uint32_t> words;

@@ -27,9 +27,9 @@ TEST(ExactGold, GenzMalikAtALooseToleranceDoesNotStopOnOneRegion) {
   // gold). The gold at 1e-4 must agree with the dense stratified gold (independent, random)
   // within 4 of its standard errors plus the gold's own estimate, and with a 1e-7 gold of
   // itself within 1e-4.
-  const LinkDescription description =
+  const LinkGeometry description =
       readLinkFile(std::filesystem::path(RADQUAD_TEST_DATA) / "slats_link.json");
-  const SceneLink sceneLink = buildSceneLink(description);
+  const BuiltLink sceneLink = description.build();
   ExactGoldOptions loose;
   loose.tolerance = 1e-4;
   loose.outer = ExactOuterMethod::genzMalik;

@@ -14,9 +14,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 1) return 0;
   const int degree = data[0] % 4;
   try {
-    const LinkDescription description =
+    const LinkGeometry description =
         parseLink(parseJsonText(fuzz::text(data + 1, size - 1), "fuzz"), "fuzz");
-    const SceneLink built = buildSceneLink(description);
+    const BuiltLink built = description.build();
     for (const char* name : {"FullGauss", "Stroud65", "Stratified:4"}) {
       const PreparedRule prepared(findRule(name), degree);
       const LinkIntegral integral = prepared.integrate(built.link, 7);

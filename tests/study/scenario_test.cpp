@@ -30,8 +30,8 @@ TEST(Scenario, TheSameSeedGivesTheSameLink) {
     const GeneratedLink b = generateLink(ranges, StudyClass::partial, seed);
     EXPECT_EQ(a.receiver.origin, b.receiver.origin);
     EXPECT_EQ(a.source.edgeU, b.source.edgeU);
-    EXPECT_EQ(a.blockers.size(), b.blockers.size());
-    EXPECT_EQ(a.soupVertices, b.soupVertices);
+    EXPECT_EQ(a.parallelograms.size(), b.parallelograms.size());
+    EXPECT_EQ(a.vertices, b.vertices);
   }
   EXPECT_NE(generateLink(ranges, StudyClass::partial, 1).source.origin,
             generateLink(ranges, StudyClass::partial, 2).source.origin);
@@ -57,7 +57,7 @@ TEST(Scenario, LinksCoverTheConfiguredRanges) {
     EXPECT_TRUE(whollyInFront(link.receiver, link.source)) << "seed " << seed;
     EXPECT_TRUE(link.hasOccluders()) << "seed " << seed;
     if (link.occluderKind == OccluderKind::soup) {
-      EXPECT_EQ(link.soupTriangles.size(), 1000u);
+      EXPECT_EQ(link.triangles.size(), 1000u);
     }
     if (link.orientation == Orientation::perpendicular) {
       EXPECT_NEAR(link.receiver.normal.dot(link.source.normal), 0.0, 1e-12);
@@ -80,7 +80,7 @@ TEST(Scenario, UnoccludedLinksHaveNoOccluders) {
   for (std::uint64_t seed = 0; seed < 50; ++seed) {
     const GeneratedLink link = generateLink(ranges, StudyClass::unoccluded, seed);
     EXPECT_FALSE(link.hasOccluders());
-    EXPECT_EQ(link.buildScene(), nullptr);
+    EXPECT_EQ(link.occluderScene(), nullptr);
   }
 }
 

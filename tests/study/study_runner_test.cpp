@@ -98,12 +98,12 @@ TEST(StudyRunner, PerLinkLinesReproduceTheirCouplingsFromTheirGeometry) {
     const LinkRecord& record = classRun.links[index];
     ++count;
     EXPECT_EQ(entry["candidate"], record.candidate);
-    const LinkDescription description = parseLink(
+    const LinkGeometry description = parseLink(
         {{"receiver", entry["receiver"]}, {"source", entry["source"]}, {"occluders", entry["occluders"]}},
         "line " + std::to_string(count));
     triangles += description.triangles.size();
-    parallelograms += description.occluders.size();
-    const SceneLink built = buildSceneLink(description);
+    parallelograms += description.parallelograms.size();
+    const BuiltLink built = description.build();
     const Eigen::MatrixXd reference = matrixFromJson(entry["reference"]["coupling"]);
     ASSERT_EQ(entry["rules"].size(), run.rules.size());
     for (std::size_t r = 0; r < run.rules.size(); ++r) {
@@ -133,7 +133,7 @@ TEST(StudyRunner, ReferenceStandardErrorAgreesWithTheReferenceLibrary) {
   const GeometryRanges ranges;
   for (const StudyClass linkClass : {StudyClass::unoccluded, StudyClass::partial}) {
     const GeneratedLink generated = generateLink(ranges, linkClass, 5);
-    const auto scene = generated.buildScene();
+    const auto scene = generated.occluderScene();
     const Link link{generated.receiver, generated.source, scene.get()};
     const ReferenceOptions options{10, 4};
     const ReferenceEstimator estimator(options, 2);
@@ -247,7 +247,7 @@ TEST(SceneLinks, ThePoolHoldsTheSolvesFinalLinksAsPatchesWithTheRestOfTheSceneAs
     const Patch& patch = scene.patches[std::size_t(entry.receiverPatch)].patch;
     EXPECT_NEAR(std::fabs(entry.receiver.normal.dot(patch.normal)), 1.0, 1e-12);
     EXPECT_LE(entry.receiver.area, patch.area * (1 + 1e-12));
-    const auto occluders = pool.occluders(entry);
+    const auto occluders = pool.geometry(entry).occluderScene();
     EXPECT_EQ(occluders->primitiveCount(), scene.patches.size() - 2);
   }
 }
@@ -269,7 +269,7 @@ TEST(SceneLinks, APoolOfTwoScenesHoldsBothScenesLinks) {
     ASSERT_TRUE(entry.scene == 0 || entry.scene == 1);
     ++seen[entry.scene];
     if (k < 20) {
-      EXPECT_EQ(both.occluders(entry)->primitiveCount(), patches[entry.scene] - 2);
+      EXPECT_EQ(both.geometry(entry).occluderScene()->primitiveCount(), patches[entry.scene] - 2);
     }
   }
   EXPECT_GT(seen[0], 0);
