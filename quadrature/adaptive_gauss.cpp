@@ -43,10 +43,13 @@ GaussPointCounts chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input) {
 }
 
 GaussPointCounts chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator) {
-  GaussPointCounts rule = chooseGaussRulesNoVisibility(input);
-  if (!input.partiallyOccluded) return rule;
+  const GaussPointCounts rule = chooseGaussRulesNoVisibility(input);
+  return input.partiallyOccluded ? increaseAnAxis(rule, input.degree, generator) : rule;
+}
+
+GaussPointCounts increaseAnAxis(GaussPointCounts rule, int degree, PhiloxStream& generator) {
   // "RandomlyIncreaseAnAxis(Src)": only an axis below the full d+1 points can grow.
-  const int full = input.degree + 1;
+  const int full = degree + 1;
   const bool uCanGrow = rule[2] < full, vCanGrow = rule[3] < full;
   if (uCanGrow && vCanGrow) {
     ++rule[generator.bounded(2) == 0 ? 2 : 3];

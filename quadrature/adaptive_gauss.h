@@ -53,6 +53,12 @@ GaussPointCounts chooseGaussRulesNoVisibility(const AdaptiveGaussInput& input);
 // generator.bounded(2): 0 is u, 1 is v). No draw is made otherwise.
 GaussPointCounts chooseGaussRules(const AdaptiveGaussInput& input, PhiloxStream& generator);
 
+// Figure 4's last step alone ("RandomlyIncreaseAnAxis"), on a partially occluded link's rule
+// without it: one source axis with fewer than d+1 points gets one more, `generator` choosing
+// when both qualify (as above). chooseGaussRules is chooseGaussRulesNoVisibility followed by
+// this for a partially occluded link.
+GaussPointCounts increaseAnAxis(GaussPointCounts rule, int degree, PhiloxStream& generator);
+
 // The seed of a link's own generator, a pure function of the link's identity (its receiver
 // and source element ids), so that the choice does not depend on the order links are
 // visited in or on the thread count: deriveSeed(baseSeed, {receiver, source})

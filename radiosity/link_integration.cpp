@@ -83,9 +83,10 @@ bool elementsNear(const Patch& a, const Patch& b) {
 
 LinkIntegrationCounts LinkIntegrator::integrate(const Link& link, const GaussPointCounts& rule,
                                                 const GaussTables& tables, int depth,
+                                                bool isComposite,
                                                 Eigen::Map<Eigen::MatrixXd> coupling) {
   LinkIntegrationCounts counts;
-  if (!composite(link.receiver, link.source, depth)) {
+  if (!isComposite) {
     const GaussSide& receiverSide = tables.side(rule[0], rule[1]);
     const GaussSide& sourceSide = tables.side(rule[2], rule[3]);
     accumulator_.product(link, receiverSide.samples, receiverSide.basis, sourceSide.samples,

@@ -58,6 +58,14 @@ class LinkIntegrator {
   // {Rs, Rt, Su, Sv} from `tables`, splitting touching pairs up to `depth` levels.
   LinkIntegrationCounts integrate(const Link& link, const GaussPointCounts& rule,
                                   const GaussTables& tables, int depth,
+                                  Eigen::Map<Eigen::MatrixXd> coupling) {
+    return integrate(link, rule, tables, depth, composite(link.receiver, link.source, depth),
+                     coupling);
+  }
+  // The same for a caller that has already asked composite() (the solver sizes its store by
+  // the answer).
+  LinkIntegrationCounts integrate(const Link& link, const GaussPointCounts& rule,
+                                  const GaussTables& tables, int depth, bool isComposite,
                                   Eigen::Map<Eigen::MatrixXd> coupling);
 
   // Whether integrate uses the pieces' composite rule for these elements at this depth.

@@ -80,15 +80,13 @@ GaussPointCounts Solver::chooseRule(const SolverLink& link,
   const Patch& r = (*hierarchy_)[link.receiver].geometry;
   const Patch& s = (*hierarchy_)[link.source].geometry;
   if (options_.rules != RuleChoice::kFixed) {
-    double magnitudes[(kMaxAdaptiveDegree + 1) * (kMaxAdaptiveDegree + 1)];
-    AdaptiveGaussInput input = adaptiveInput(link.source, magnitudes);
-    input.partiallyOccluded = link.visibility == LinkClass::kPartial;
-    if (options_.rules == RuleChoice::kAdaptive) {
+    // Figure 4 from the source's points of this pass (updateSourcePoints, copied to
+    // link.sourcePoints by computeCouplings), then its visibility step.
+    rule = {n, n, link.sourcePoints[0], link.sourcePoints[1]};
+    if (options_.rules == RuleChoice::kAdaptive && link.visibility == LinkClass::kPartial) {
       PhiloxStream generator(
           linkSeed(options_.seed, std::uint32_t(link.receiver), std::uint32_t(link.source)), 0);
-      rule = chooseGaussRules(input, generator);
-    } else {
-      rule = chooseGaussRulesNoVisibility(input);
+      rule = increaseAnAxis(rule, options_.degree, generator);
     }
   }
   // The receiver keeps the fixed rule's points (Figure 4 gives it d+1; at degree 0 the floor

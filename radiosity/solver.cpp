@@ -96,7 +96,7 @@ void Solver::computeCouplings() {
     Eigen::MatrixXd& whole = impl_->scratch.local();
     whole.resize(functions, functions);
     const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
-        kernelLink, rule, impl_->tables, options_.singularDepth,
+        kernelLink, rule, impl_->tables, options_.singularDepth, composites[k],
         Eigen::Map<Eigen::MatrixXd>(whole.data(), functions, functions));
     // A product rule's coupling keeps the columns of its source points' orders only; a
     // composite one keeps every column, those of the orders its rule drops zeroed when they

@@ -221,7 +221,8 @@ class Solver {
   bool oracleSaysRefine(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
   AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
-  // The link's rule; adds the kernel check's evaluations to *checkEvaluations.
+  // The link's rule, from link.sourcePoints (the source's Figure 4 points of this pass, set
+  // by computeCouplings); adds the kernel check's evaluations to *checkEvaluations.
   GaussPointCounts chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
   void updateSourcePoints();
   void computeCouplings();
