@@ -39,9 +39,9 @@ void Solver::checkFormFactorSums() {
     const double receiverArea = (*hierarchy_)[int(e)].geometry.area;
     for (int index : (*hierarchy_)[int(e)].links) {
       const SolverLink& link = links_[std::size_t(index)];
-      if (!link.computed || link.slot < 0) continue;
+      if (!link.coupling.computed || link.coupling.slot < 0) continue;
       // K[0][0]: the first entry of the kept columns (column 0 is always kept).
-      const double k00 = impl_->couplings.data(keptColumns(link), link.slot)[0];
+      const double k00 = impl_->couplings.data(keptColumns(link), link.coupling.slot)[0];
       own[e] += k00 * std::sqrt((*hierarchy_)[link.source].geometry.area / receiverArea);
     }
   });

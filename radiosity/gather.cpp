@@ -37,18 +37,18 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
     if (k + 8 < indices.size()) __builtin_prefetch(&links[std::size_t(indices[k + 8])]);
     if (k + 4 < indices.size()) {
       const SolverLink& ahead = links[std::size_t(indices[k + 4])];
-      if (ahead.slot >= 0) {
+      if (ahead.coupling.slot >= 0) {
         const char* start =
-            reinterpret_cast<const char*>(couplings.data(keptColumns(ahead), ahead.slot));
+            reinterpret_cast<const char*>(couplings.data(keptColumns(ahead), ahead.coupling.slot));
         const std::size_t bytes =
             std::size_t(functions) * std::size_t(keptColumns(ahead)) * sizeof(double);
         for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
       }
     }
     const SolverLink& link = links[std::size_t(indices[k])];
-    if (!link.computed) continue;  // its source had no radiosity yet
-    const double* coupling = couplings.data(keptColumns(link), link.slot);
-    const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
+    if (!link.coupling.computed) continue;  // its source had no radiosity yet
+    const double* coupling = couplings.data(keptColumns(link), link.coupling.slot);
+    const int pu = link.coupling.gatherPoints[0], pv = link.coupling.gatherPoints[1];
     if (pu == orders && pv == orders) {
       sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)
                            .lazyProduct(Eigen::Map<const Block>(
@@ -74,8 +74,8 @@ void Solver::projectSources() {
   const std::size_t shapes = std::size_t(orders * orders);
   projectionOffset_.assign(hierarchy_->size() * shapes, -1);
   for (const SolverLink& link : links_) {
-    if (!link.active || !link.computed) continue;
-    const int pu = link.gatherPoints[0], pv = link.gatherPoints[1];
+    if (!link.active || !link.coupling.computed) continue;
+    const int pu = link.coupling.gatherPoints[0], pv = link.coupling.gatherPoints[1];
     if (pu == orders && pv == orders) continue;
     projectionOffset_[std::size_t(link.source) * shapes + std::size_t((pu - 1) * orders + pv - 1)] =
         0;

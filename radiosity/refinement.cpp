@@ -201,9 +201,9 @@ bool Solver::refinementPass() {
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
       parent.split = true;
-      parent.computed = false;
-      if (parent.slot >= 0) {
-        impl_->couplings.release(keptColumns(parent), std::exchange(parent.slot, -1));
+      parent.coupling.computed = false;
+      if (parent.coupling.slot >= 0) {
+        impl_->couplings.release(keptColumns(parent), std::exchange(parent.coupling.slot, -1));
       }
       const int receiver = parent.receiver, source = parent.source;
       const LinkClass visibility = parent.visibility;

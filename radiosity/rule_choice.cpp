@@ -81,8 +81,8 @@ GaussPointCounts Solver::chooseRule(const SolverLink& link,
   const Patch& s = (*hierarchy_)[link.source].geometry;
   if (options_.rules != RuleChoice::kFixed) {
     // Figure 4 from the source's points of this pass (updateSourcePoints, copied to
-    // link.sourcePoints by computeCouplings), then its visibility step.
-    rule = {n, n, link.sourcePoints[0], link.sourcePoints[1]};
+    // link.coupling.sourcePoints by computeCouplings), then its visibility step.
+    rule = {n, n, link.coupling.sourcePoints[0], link.coupling.sourcePoints[1]};
     if (options_.rules == RuleChoice::kAdaptive && link.visibility == LinkClass::kPartial) {
       PhiloxStream generator(
           linkSeed(options_.seed, std::uint32_t(link.receiver), std::uint32_t(link.source)), 0);
@@ -105,8 +105,8 @@ GaussPointCounts Solver::chooseRule(const SolverLink& link,
       if (midpointRelativeError(r, s, axis == 0) > options_.kernelCurvature) rule[2 + axis] = 2;
     }
   }
-  if (link.computed) {
-    for (int axis = 0; axis < 4; ++axis) rule[axis] = std::max(rule[axis], link.rule[axis]);
+  if (link.coupling.computed) {
+    for (int axis = 0; axis < 4; ++axis) rule[axis] = std::max(rule[axis], link.coupling.rule[axis]);
   }
   return rule;
 }

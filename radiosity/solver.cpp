@@ -51,18 +51,18 @@ void Solver::computeCouplings() {
     SolverLink& link = links_[k];
     if (!link.active) continue;
     const std::array<int, 2>& sourcePoints = sourcePoints_[std::size_t(link.source)];
-    if (link.computed && sourcePoints == link.sourcePoints) continue;
+    if (link.coupling.computed && sourcePoints == link.coupling.sourcePoints) continue;
     // A link whose source has no radiosity yet carries nothing: it is integrated once its
     // source has some (with every rule choice), so that the adaptive choice sees the
     // source's coefficients rather than zeros.
-    if (!link.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
-    link.sourcePoints = sourcePoints;
+    if (!link.coupling.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
+    link.coupling.sourcePoints = sourcePoints;
     const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
-    if (link.computed && rule == link.rule) continue;
-    if (link.computed) ++statistics_.recomputations;
+    if (link.coupling.computed && rule == link.coupling.rule) continue;
+    if (link.coupling.computed) ++statistics_.recomputations;
     todo.push_back(int(k));
     rules.push_back(rule);
-    again.push_back(link.computed);
+    again.push_back(link.coupling.computed);
   }
   const auto chosen = std::chrono::steady_clock::now();
   // Storage for the links' kept columns (untimed: allocation, not integration): a product
@@ -77,12 +77,12 @@ void Solver::computeCouplings() {
     const std::array<int, 2> kept =
         composite ? std::array<int, 2>{n, n}
                   : std::array<int, 2>{std::min(rules[k][2], n), std::min(rules[k][3], n)};
-    if (link.slot >= 0 && kept != link.gatherPoints) {
-      impl_->couplings.release(keptColumns(link), std::exchange(link.slot, -1));
+    if (link.coupling.slot >= 0 && kept != link.coupling.gatherPoints) {
+      impl_->couplings.release(keptColumns(link), std::exchange(link.coupling.slot, -1));
     }
-    link.gatherPoints = kept;
+    link.coupling.gatherPoints = kept;
     composites.push_back(composite);
-    if (link.slot < 0) link.slot = impl_->couplings.allocate(keptColumns(link));
+    if (link.coupling.slot < 0) link.coupling.slot = impl_->couplings.allocate(keptColumns(link));
   }
   const auto stored = std::chrono::steady_clock::now();
   std::vector<std::uint64_t> rays(todo.size(), 0);
@@ -101,26 +101,26 @@ void Solver::computeCouplings() {
     // A product rule's coupling keeps the columns of its source points' orders only; a
     // composite one keeps every column, those of the orders its rule drops zeroed when they
     // are truncated (source_projection.h).
-    if (link.gatherPoints != std::array<int, 2>{n, n}) {
-      impl_->projection.compact(link.gatherPoints[0], link.gatherPoints[1], whole.data());
+    if (link.coupling.gatherPoints != std::array<int, 2>{n, n}) {
+      impl_->projection.compact(link.coupling.gatherPoints[0], link.coupling.gatherPoints[1], whole.data());
     } else if (rule[2] < n || rule[3] < n) {
       impl_->projection.dropOrders(std::min(rule[2], n), std::min(rule[3], n), whole.data());
     }
-    std::memcpy(impl_->couplings.data(keptColumns(link), link.slot), whole.data(),
+    std::memcpy(impl_->couplings.data(keptColumns(link), link.coupling.slot), whole.data(),
                 sizeof(double) * std::size_t(functions) * std::size_t(keptColumns(link)));
-    link.kernelEvaluations = counts.kernelEvaluations;
-    link.rule = rule;
-    link.computed = true;
+    link.coupling.kernelEvaluations = counts.kernelEvaluations;
+    link.coupling.rule = rule;
+    link.coupling.computed = true;
     rays[k] = counts.raysCast;
   });
   for (std::size_t k = 0; k < todo.size(); ++k) {
-    statistics_.kernelEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
+    statistics_.kernelEvaluations += links_[std::size_t(todo[k])].coupling.kernelEvaluations;
     if (again[k]) {
-      statistics_.recomputationEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
+      statistics_.recomputationEvaluations += links_[std::size_t(todo[k])].coupling.kernelEvaluations;
     }
     statistics_.integrationRays += rays[k];
     if (composites[k]) {
-      statistics_.compositeEvaluations += links_[std::size_t(todo[k])].kernelEvaluations;
+      statistics_.compositeEvaluations += links_[std::size_t(todo[k])].coupling.kernelEvaluations;
     }
   }
   statistics_.kernelEvaluations += statistics_.ruleCheckEvaluations - checksBefore;
@@ -262,7 +262,7 @@ void Solver::solve() {
   // are released so that a solver kept for its solution does not hold them.
   statistics_.couplingStoreBytes = impl_->couplings.bytes();
   impl_->couplings = CouplingStore(hierarchy_->functions());
-  for (SolverLink& link : links_) link.slot = -1;
+  for (SolverLink& link : links_) link.coupling.slot = -1;
 }
 
 }  // namespace radquad

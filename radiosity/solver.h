@@ -118,7 +118,22 @@ struct SolveProgress {
   double elapsedSeconds = 0.0;
 };
 
-// One link: energy from `source` element to `receiver` element.
+// What the solver's coupling store holds for a link: the rule its coupling was integrated
+// with and where it is kept.
+struct LinkCoupling {
+  bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
+  int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
+  GaussPointCounts rule = {1, 1, 1, 1};      // Gauss points on {Rs, Rt, Su, Sv}
+  std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
+  // The source points {pu, pv} whose columns the stored coupling keeps (source_projection.h):
+  // min(Su, d+1), min(Sv, d+1) for a product rule, {d+1, d+1} (every column) for a
+  // composite one. Its slot in the store is keptColumns() = pu pv columns wide.
+  std::array<int, 2> gatherPoints = {0, 0};
+  std::uint64_t kernelEvaluations = 0;  // of the last computation
+};
+
+// One link: energy from `source` element to `receiver` element; its place in the hierarchy
+// (refinement.cpp) and, apart, its cached coupling (solver.cpp).
 struct SolverLink {
   int receiver = 0;
   int source = 0;
@@ -129,16 +144,8 @@ struct SolverLink {
   bool active = true;
   bool split = false;
   bool occlusionProven = false;  // occluded by one candidate (blocksShaft): never examined
-  bool computed = false;  // whether the link's coupling (in the solver's store) is this rule's
-  int slot = -1;          // where the solver's store keeps its coupling (-1: none yet)
-  GaussPointCounts rule = {1, 1, 1, 1};    // Gauss points on {Rs, Rt, Su, Sv}
-  std::array<int, 2> sourcePoints = {0, 0};  // the source's {Su, Sv} when `rule` was chosen
-  // The source points {pu, pv} whose columns the stored coupling keeps (source_projection.h):
-  // min(Su, d+1), min(Sv, d+1) for a product rule, {d+1, d+1} (every column) for a
-  // composite one. Its slot in the store is keptColumns() = pu pv columns wide.
-  std::array<int, 2> gatherPoints = {0, 0};
-  std::uint64_t kernelEvaluations = 0;       // of the last computation
-  std::vector<int> candidates;               // candidate occluders (patch indices)
+  std::vector<int> candidates;   // candidate occluders (patch indices)
+  LinkCoupling coupling;
 };
 
 // The largest form factor sum over the elements (form_factor_check.cpp): at most
@@ -152,7 +159,7 @@ struct FormFactorSums {
 };
 
 inline int keptColumns(const SolverLink& link) {
-  return link.gatherPoints[0] * link.gatherPoints[1];
+  return link.coupling.gatherPoints[0] * link.coupling.gatherPoints[1];
 }
 
 struct SolveStatistics {
@@ -221,7 +228,7 @@ class Solver {
   bool oracleSaysRefine(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
   AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
-  // The link's rule, from link.sourcePoints (the source's Figure 4 points of this pass, set
+  // The link's rule, from link.coupling.sourcePoints (the source's Figure 4 points of this pass, set
   // by computeCouplings); adds the kernel check's evaluations to *checkEvaluations.
   GaussPointCounts chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
   void updateSourcePoints();

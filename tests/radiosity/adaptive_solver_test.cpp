@@ -63,7 +63,7 @@ TEST(AdaptiveSolverTest, ConstantEmitterGetsOneSourcePoint) {
     for (const SolverLink& link : solver.links()) {
       if (!link.active || solver.hierarchy()[link.source].patch != 0) continue;
       ++fromEmitter;
-      EXPECT_EQ(link.rule, (GaussPointCounts{degree + 1, degree + 1, 1, 1}));
+      EXPECT_EQ(link.coupling.rule, (GaussPointCounts{degree + 1, degree + 1, 1, 1}));
     }
     EXPECT_GT(fromEmitter, 0);
     const double mean = solver.hierarchy()[1].meanRadiosity()[0];
@@ -90,7 +90,7 @@ TEST(AdaptiveSolverTest, ResultDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(solvers[0]->hierarchy().l2Difference(solvers[1]->hierarchy()).first, 0.0);
   ASSERT_EQ(solvers[0]->links().size(), solvers[1]->links().size());
   for (std::size_t k = 0; k < solvers[0]->links().size(); ++k) {
-    EXPECT_EQ(solvers[0]->links()[k].rule, solvers[1]->links()[k].rule) << "link " << k;
+    EXPECT_EQ(solvers[0]->links()[k].coupling.rule, solvers[1]->links()[k].coupling.rule) << "link " << k;
   }
 }
 
@@ -110,21 +110,21 @@ TEST(AdaptiveSolverTest, PartialLinksGetTheExtraSourcePoint) {
   solver.solve();
   int partial = 0, elongated = 0;
   for (const SolverLink& link : solver.links()) {
-    if (!link.active || !link.computed) continue;
+    if (!link.active || !link.coupling.computed) continue;
     const Patch& r = solver.hierarchy()[link.receiver].geometry;
     const Patch& s = solver.hierarchy()[link.source].geometry;
-    EXPECT_EQ(link.rule[0], scaled(r, true, 4));
-    EXPECT_EQ(link.rule[1], scaled(r, false, 4));
-    elongated += link.rule[0] != 4 || link.rule[1] != 4 ? 1 : 0;
+    EXPECT_EQ(link.coupling.rule[0], scaled(r, true, 4));
+    EXPECT_EQ(link.coupling.rule[1], scaled(r, false, 4));
+    elongated += link.coupling.rule[0] != 4 || link.coupling.rule[1] != 4 ? 1 : 0;
     // ErrThres is so large that no coefficient is significant: 1 x 1, plus one on partial.
-    const bool oneOne = link.rule[2] == scaled(s, true, 1) && link.rule[3] == scaled(s, false, 1);
-    const bool twoOne = link.rule[2] == scaled(s, true, 2) && link.rule[3] == scaled(s, false, 1);
-    const bool oneTwo = link.rule[2] == scaled(s, true, 1) && link.rule[3] == scaled(s, false, 2);
+    const bool oneOne = link.coupling.rule[2] == scaled(s, true, 1) && link.coupling.rule[3] == scaled(s, false, 1);
+    const bool twoOne = link.coupling.rule[2] == scaled(s, true, 2) && link.coupling.rule[3] == scaled(s, false, 1);
+    const bool oneTwo = link.coupling.rule[2] == scaled(s, true, 1) && link.coupling.rule[3] == scaled(s, false, 2);
     if (link.visibility == LinkClass::kPartial) {
       ++partial;
-      EXPECT_TRUE(twoOne || oneTwo) << link.rule[2] << " x " << link.rule[3];
+      EXPECT_TRUE(twoOne || oneTwo) << link.coupling.rule[2] << " x " << link.coupling.rule[3];
     } else {
-      EXPECT_TRUE(oneOne) << link.rule[2] << " x " << link.rule[3];
+      EXPECT_TRUE(oneOne) << link.coupling.rule[2] << " x " << link.coupling.rule[3];
     }
   }
   EXPECT_GT(partial, 0);
@@ -142,18 +142,18 @@ TEST(AdaptiveSolverTest, KernelCheckLeavesOnePointOnlyWhereTheKernelIsFlat) {
   solver.solve();
   int onePoint = 0, bumped = 0;
   for (const SolverLink& link : solver.links()) {
-    if (!link.active || !link.computed) continue;
+    if (!link.active || !link.coupling.computed) continue;
     const Patch& r = solver.hierarchy()[link.receiver].geometry;
     const Patch& s = solver.hierarchy()[link.source].geometry;
     for (int axis = 0; axis < 2; ++axis) {
       const double error = midpointRelativeError(r, s, axis == 0);
-      if (link.rule[2 + axis] == 1) {
+      if (link.coupling.rule[2 + axis] == 1) {
         ++onePoint;
         EXPECT_LE(error, 0.01);
       } else if (scaled(s, axis == 0, 1) == 1) {
         // ErrThres is so large that Figure 4 gives one point: the check added the second.
         ++bumped;
-        EXPECT_EQ(link.rule[2 + axis], 2);
+        EXPECT_EQ(link.coupling.rule[2 + axis], 2);
         EXPECT_GT(error, 0.01);
       }
     }
@@ -219,12 +219,12 @@ TEST(AdaptiveSolverTest, CompositeEvaluationsAreThoseOfNearOrCutLinks) {
     std::uint64_t composite = 0, touching = 0, total = 0;
     // Every link integrated, those split afterwards included (they keep their count).
     for (const SolverLink& link : solver.links()) {
-      if (link.kernelEvaluations == 0) continue;
+      if (link.coupling.kernelEvaluations == 0) continue;
       const Patch& r = solver.hierarchy()[link.receiver].geometry;
       const Patch& s = solver.hierarchy()[link.source].geometry;
-      total += link.kernelEvaluations;
-      if (LinkIntegrator::composite(r, s, options.singularDepth)) composite += link.kernelEvaluations;
-      if (elementsTouch(r, s)) touching += link.kernelEvaluations;
+      total += link.coupling.kernelEvaluations;
+      if (LinkIntegrator::composite(r, s, options.singularDepth)) composite += link.coupling.kernelEvaluations;
+      if (elementsTouch(r, s)) touching += link.coupling.kernelEvaluations;
     }
     const SolveStatistics& statistics = solver.statistics();
     EXPECT_GT(touching, 0u);
