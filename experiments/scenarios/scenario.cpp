@@ -228,13 +228,12 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
                                        random.uniform(-0.7, 0.7) * largest * p +
                                        random.uniform(-0.7, 0.7) * largest * q;
         const double size = random.logUniform(0.03, 0.12) * largest;
-        const auto first = std::uint32_t(link.vertices.size());
-        for (int corner = 0; corner < 3; ++corner) {
-          link.vertices.push_back(centre + size * Eigen::Vector3d(random.uniform(-1, 1),
-                                                                      random.uniform(-1, 1),
-                                                                      random.uniform(-1, 1)));
+        std::array<Eigen::Vector3d, 3> corners;
+        for (Eigen::Vector3d& corner : corners) {
+          corner = centre + size * Eigen::Vector3d(random.uniform(-1, 1), random.uniform(-1, 1),
+                                                   random.uniform(-1, 1));
         }
-        link.triangles.push_back({first, first + 1, first + 2});
+        link.addTriangle(corners[0], corners[1], corners[2]);
       }
       return;
     }
