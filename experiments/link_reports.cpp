@@ -8,6 +8,7 @@
 #include "experiments/trace_report.h"
 #include "kernel/input_error.h"
 #include "kernel/patch_intersection.h"
+#include "quadrature/estimate.h"
 #include "quadrature/prepared_rule.h"
 #include "reference/stratified_reference.h"
 
@@ -27,7 +28,7 @@ nlohmann::json trialStatistics(const PreparedRule& prepared, const Link& link,
                        std::size_t(trial));
     if (trial == 0) first = integral;
     coupling.add(integral.coupling);
-    formFactor.add(Eigen::MatrixXd::Constant(1, 1, integral.formFactor));
+    formFactor.add(integral.formFactor);
   }
   return {{"trials", options.trials},
           {"seeds", {options.seed, options.seed + std::uint64_t(options.trials) - 1}},

@@ -38,7 +38,3 @@ inline constexpr int kComputationErrorExitStatus = 3;
 // Checks an internal invariant in every build (unlike assert, which release builds drop).
 #define RADQUAD_REQUIRE(condition) \
   ((condition) ? void(0) : ::radquad::requireFailed(#condition, __FILE__, __LINE__))
-
-namespace radquad {
-
-}  // namespace radquad

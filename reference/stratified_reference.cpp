@@ -1,11 +1,10 @@
 #include "reference/stratified_reference.h"
 
-#include <cmath>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "kernel/input_error.h"
+#include "quadrature/estimate.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/random/seeds.h"
 #include "quadrature/rules/stratified.h"
@@ -13,8 +12,12 @@
 namespace radquad {
 namespace {
 
+// R independent draws of Stratified:k (seeds replicateSeed(seed, firstIndex + j)), summarised
+// one at a time by EntrywiseMoments; `first` receives draw 0.
 struct Draws {
-  std::vector<LinkIntegral> integrals;
+  LinkIntegral first;
+  EntrywiseMoments coupling, formFactor;
+  std::uint64_t kernelEvaluations = 0, raysCast = 0, raysBlocked = 0;
 };
 
 Draws drawReplicates(const Link& link, int degree, std::uint64_t seed, int strataPerAxis,
@@ -30,35 +33,18 @@ Draws drawReplicates(const Link& link, int degree, std::uint64_t seed, int strat
   const PreparedRule prepared(std::make_shared<StratifiedRule>(strataPerAxis), degree);
   CouplingAccumulator accumulator;
   Draws draws;
-  draws.integrals.resize(std::size_t(replicates));
+  LinkIntegral integral;
   for (int j = 0; j < replicates; ++j) {
     prepared.integrate(link, replicateSeed(seed, firstIndex + std::uint32_t(j)), accumulator,
-                       draws.integrals[std::size_t(j)]);
+                       integral);
+    if (j == 0) draws.first = integral;
+    draws.coupling.add(integral.coupling);
+    draws.formFactor.add(integral.formFactor);
+    draws.kernelEvaluations += integral.kernelEvaluations;
+    draws.raysCast += integral.raysCast;
+    draws.raysBlocked += integral.raysBlocked;
   }
   return draws;
-}
-
-// Entrywise sample standard deviation (denominator R-1) of the draws.
-void spread(const Draws& draws, Eigen::MatrixXd& mean, Eigen::MatrixXd& deviation,
-            double& formFactorMean, double& formFactorDeviation) {
-  const double count = double(draws.integrals.size());
-  mean =
-      Eigen::MatrixXd::Zero(draws.integrals[0].coupling.rows(), draws.integrals[0].coupling.cols());
-  formFactorMean = 0.0;
-  for (const auto& draw : draws.integrals) {
-    mean += draw.coupling;
-    formFactorMean += draw.formFactor;
-  }
-  mean /= count;
-  formFactorMean /= count;
-  Eigen::MatrixXd squares = Eigen::MatrixXd::Zero(mean.rows(), mean.cols());
-  double formFactorSquares = 0.0;
-  for (const auto& draw : draws.integrals) {
-    squares += (draw.coupling - mean).cwiseAbs2();
-    formFactorSquares += (draw.formFactor - formFactorMean) * (draw.formFactor - formFactorMean);
-  }
-  deviation = (squares / (count - 1.0)).cwiseSqrt();
-  formFactorDeviation = std::sqrt(formFactorSquares / (count - 1.0));
 }
 
 }  // namespace
@@ -68,14 +54,12 @@ ReferenceEstimate stratifiedReference(const Link& link, int degree, std::uint64_
   const Draws draws =
       drawReplicates(link, degree, seed, options.strataPerAxis, options.replicates, 0);
   ReferenceEstimate estimate;
-  estimate.integral = draws.integrals[0];
+  estimate.integral = draws.first;
   estimate.replicates = options.replicates;
-  Eigen::MatrixXd mean;
-  double formFactorMean = 0.0;
-  spread(draws, mean, estimate.couplingStandardError, formFactorMean,
-         estimate.formFactorStandardError);
-  for (const auto& draw : draws.integrals)
-    estimate.totalKernelEvaluations += draw.kernelEvaluations;
+  // The sample standard deviation of one draw is the standard error of the reported draw.
+  estimate.couplingStandardError = draws.coupling.sampleDeviation();
+  estimate.formFactorStandardError = draws.formFactor.sampleDeviation()(0, 0);
+  estimate.totalKernelEvaluations = draws.kernelEvaluations;
   return estimate;
 }
 
@@ -83,18 +67,14 @@ ReplicateMean stratifiedReplicateMean(const Link& link, int degree, std::uint64_
                                       int strataPerAxis, int replicates, std::uint32_t firstIndex) {
   const Draws draws = drawReplicates(link, degree, seed, strataPerAxis, replicates, firstIndex);
   ReplicateMean result;
-  Eigen::MatrixXd deviation;
-  double formFactorDeviation = 0.0;
-  spread(draws, result.coupling, deviation, result.formFactor, formFactorDeviation);
+  result.coupling = draws.coupling.mean();
+  result.formFactor = draws.formFactor.mean()(0, 0);
   // The standard error of a mean of R independent draws.
-  const double root = std::sqrt(double(replicates));
-  result.couplingStandardError = deviation / root;
-  result.formFactorStandardError = formFactorDeviation / root;
-  for (const auto& draw : draws.integrals) {
-    result.kernelEvaluations += draw.kernelEvaluations;
-    result.raysCast += draw.raysCast;
-    result.raysBlocked += draw.raysBlocked;
-  }
+  result.couplingStandardError = draws.coupling.standardError();
+  result.formFactorStandardError = draws.formFactor.standardError()(0, 0);
+  result.kernelEvaluations = draws.kernelEvaluations;
+  result.raysCast = draws.raysCast;
+  result.raysBlocked = draws.raysBlocked;
   return result;
 }
 

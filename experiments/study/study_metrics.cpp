@@ -103,23 +103,6 @@ SummaryStatistics summarize(std::vector<double> values) {
   return out;
 }
 
-void EntrywiseMoments::add(const Eigen::MatrixXd& value) {
-  ++count_;
-  if (count_ == 1) {
-    mean_ = value;
-    squares_ = Eigen::MatrixXd::Zero(value.rows(), value.cols());
-    return;
-  }
-  const Eigen::MatrixXd delta = value - mean_;
-  mean_ += delta / double(count_);
-  squares_ += delta.cwiseProduct(value - mean_);
-}
-
-Eigen::MatrixXd EntrywiseMoments::sampleDeviation() const {
-  if (count_ < 2) return Eigen::MatrixXd::Zero(mean_.rows(), mean_.cols());
-  return (squares_ / double(count_ - 1)).cwiseMax(0.0).cwiseSqrt();
-}
-
 nlohmann::json statisticsToJson(const SummaryStatistics& statistics) {
   return {{"mean", statistics.mean}, {"median", statistics.median}, {"p90", statistics.p90},
           {"max", statistics.max},   {"sem", statistics.sem},       {"count", statistics.count}};

@@ -53,20 +53,6 @@ SummaryStatistics summarize(std::vector<double> values);
 // The sum of the values (a link's L1 bounds over its source functions: its U_tot).
 double sum(const std::vector<double>& values);
 
-// Entrywise mean and sample standard deviation (denominator n - 1; zeros for n < 2) of
-// matrices of one shape, accumulated one at a time (Welford's update, which does not lose
-// the deviation to cancellation when it is small against the mean).
-class EntrywiseMoments {
- public:
-  void add(const Eigen::MatrixXd& value);
-  std::size_t count() const { return count_; }
-  const Eigen::MatrixXd& mean() const { return mean_; }
-  Eigen::MatrixXd sampleDeviation() const;
-
- private:
-  std::size_t count_ = 0;
-  Eigen::MatrixXd mean_, squares_;
-};
 nlohmann::json statisticsToJson(const SummaryStatistics& statistics);
 
 }  // namespace radquad

@@ -17,6 +17,7 @@
 #include "experiments/study/study_metrics.h"
 #include "kernel/input_error.h"
 #include "kernel/patch_intersection.h"
+#include "quadrature/estimate.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
 

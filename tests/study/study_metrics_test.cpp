@@ -4,8 +4,6 @@
 #include <cmath>
 #include <random>
 
-#include <cmath>
-
 #include "experiments/study/study_metrics.h"
 
 namespace radquad {
@@ -103,28 +101,6 @@ TEST(StudyMetrics, PairedRatioWithItsDeltaMethodInterval) {
     covered += r.low <= 0.7 && 0.7 <= r.high ? 1 : 0;
   }
   EXPECT_NEAR(covered / 2000.0, 0.95, 0.015);
-}
-
-TEST(StudyMetrics, EntrywiseMomentsAgreeWithTheTwoPassFormulas) {
-  std::mt19937_64 random(9);
-  std::normal_distribution<double> normal(1e6, 1.0);  // a large mean: cancellation-prone
-  std::vector<Eigen::MatrixXd> draws;
-  EntrywiseMoments moments;
-  for (int k = 0; k < 50; ++k) {
-    Eigen::MatrixXd draw(2, 3);
-    for (int e = 0; e < 6; ++e) draw.data()[e] = normal(random);
-    draws.push_back(draw);
-    moments.add(draw);
-  }
-  Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(2, 3), squares = Eigen::MatrixXd::Zero(2, 3);
-  for (const auto& draw : draws) mean += draw / 50.0;
-  for (const auto& draw : draws) squares += (draw - mean).cwiseAbs2();
-  const Eigen::MatrixXd deviation = (squares / 49.0).cwiseSqrt();
-  EXPECT_LE((moments.mean() - mean).cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_LE((moments.sampleDeviation() - deviation).cwiseAbs().maxCoeff(), 1e-9);
-  EntrywiseMoments one;
-  one.add(draws[0]);
-  EXPECT_EQ(one.sampleDeviation(), Eigen::MatrixXd::Zero(2, 3));
 }
 
 }  // namespace
