@@ -35,8 +35,11 @@ const char* ruleChoiceName(RuleChoice rules);
 
 // The default ErrThres of the adaptive rules: a coefficient is significant when its
 // component's RMS radiosity over the source element exceeds this fraction of the scene's
-// emitted radiosity scale (see radiosity/README.md, "Adaptive rules").
-inline constexpr double kDefaultErrThres = 0.1;
+// emitted radiosity scale (see radiosity/README.md, "Adaptive rules"). 0.05 keeps every
+// patch's mean radiosity within 1% of the fixed rules' on the built-in scenes at degrees 1-3
+// (0.1 did not: 1.05% on cubic cornell and 1.02% on linear slats without the visibility
+// step); docs/study.md, "How to choose ErrThres", has the measurements.
+inline constexpr double kDefaultErrThres = 0.05;
 
 // The default kernel check of the adaptive rules (radiosity/kernel_curvature.h): a source
 // axis left with one point gets two where the midpoint rule's estimated relative error along

@@ -18,7 +18,7 @@ struct AdaptiveRunOptions {
   std::vector<int> degrees = {1, 2, 3};
   std::vector<std::string> scenes = {"cornell", "slats"};
   // The ErrThres curve: one scene and degree, coarser refinement to keep it short.
-  std::vector<double> sweepThresholds = {1e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0, 3.0};
+  std::vector<double> sweepThresholds = {1e-3, 1e-2, 3e-2, 0.05, 0.1, 0.3, 1.0, 3.0};
   std::string sweepScene = "cornell";
   int sweepDegree = 3;
   double sweepBfEpsilon = 0.3;
