@@ -21,39 +21,76 @@ constexpr int kRadialPoints = 16;
 // polynomial weights cancel most.
 int edgePointsFor(double accuracy) { return accuracy < 1e-6 ? 12 : 8; }
 
-// j_m(X) = int_0^X r^m / (1 + r^2)^2 dr, m = 0..maxPower.
-void scaledRadialMoments(double X, int maxPower, double* out) {
-  if (X <= 2.0) {
-    // The integrand's only singularities are the poles at r = +-i: for X <= 2 the 16-point
-    // rule's error is below 1e-15 relative (Bernstein ellipse parameter above 2.8).
-    static const GaussLegendreRule& rule = gaussLegendreUnit(kRadialPoints);
-    double r[kRadialPoints], term[kRadialPoints];
-    for (int k = 0; k < kRadialPoints; ++k) {
-      r[k] = X * rule.nodes[k];
-      const double denominator = 1.0 + r[k] * r[k];
-      term[k] = X * rule.weights[k] / (denominator * denominator);
-    }
-    for (int m = 0; m <= maxPower; ++m) {
-      double sum = 0.0;
-      for (int k = 0; k < kRadialPoints; ++k) sum += term[k];
-      out[m] = sum;
-      for (int k = 0; k < kRadialPoints; ++k) term[k] *= r[k];
-    }
-    return;
+// j_m(X) = int_0^X r^m / (1 + r^2)^2 dr, m = 0..maxPower (P: maxPower as a compile-time
+// constant, -1: at run time; N: the Gauss rule's points, a multiple of 4).
+// Where X is small the recurrences (below) lose digits (l_m is a difference of terms about
+// X^-2 times larger than itself, at every step), so a Gauss rule takes them. The integrand's
+// only singularities are the poles at r = +-i: the smaller X, the larger their Bernstein
+// ellipse about [0, X] and the fewer points reach rounding. For powers up to 8 (degree <= 3),
+// measured against 30-digit quadrature on 400 values of X: 8 points up to X = 0.15, 12 up to
+// 0.85 and the recurrences above 0.85 all err by at most 1.5e-14 relative. Higher powers lose
+// more in the recurrences: 16 points up to X = 2 (below 1e-13).
+template <int P, int N>
+void gaussRadialMoments(double X, int maxPower, double* out) {
+  const int powers = P >= 0 ? P : maxPower;
+  static const GaussLegendreRule& rule = gaussLegendreUnit(N);
+  double r[N], term[N];
+  for (int k = 0; k < N; ++k) {
+    r[k] = X * rule.nodes[k];
+    const double denominator = 1.0 + r[k] * r[k];
+    term[k] = X * rule.weights[k] / (denominator * denominator);
   }
-  // Recurrences: l_m = int r^m / (1 + r^2) = X^(m-1) / (m-1) - l_(m-2), j_m = l_(m-2) - j_(m-2).
+  for (int m = 0; m <= powers; ++m) {
+    // Four partial sums: short dependency chains.
+    double sum[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int k = 0; k < N; k += 4) {
+      for (int j = 0; j < 4; ++j) sum[j] += term[k + j];
+    }
+    out[m] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    for (int k = 0; k < N; ++k) term[k] *= r[k];
+  }
+}
+
+// Recurrences: l_m = int r^m / (1 + r^2) = X^(m-1) / (m-1) - l_(m-2), j_m = l_(m-2) - j_(m-2).
+template <int P>
+void recurrentRadialMoments(double X, int maxPower, double* out) {
+  const int powers = P >= 0 ? P : maxPower;
   const double X2 = X * X;
   std::array<double, kMaxPower + 1> l{};
   l[0] = std::atan(X);
-  if (maxPower >= 1) l[1] = 0.5 * std::log1p(X2);
+  if (powers >= 1) l[1] = 0.5 * std::log1p(X2);
   double power = X;  // X^(m-1)
-  for (int m = 2; m <= maxPower; ++m) {
+  for (int m = 2; m <= powers; ++m) {
     l[m] = power / double(m - 1) - l[m - 2];
     power *= X;
   }
   out[0] = 0.5 * (X / (1.0 + X2) + l[0]);
-  if (maxPower >= 1) out[1] = 0.5 * X2 / (1.0 + X2);
-  for (int m = 2; m <= maxPower; ++m) out[m] = l[m - 2] - out[m - 2];
+  if (powers >= 1) out[1] = 0.5 * X2 / (1.0 + X2);
+  for (int m = 2; m <= powers; ++m) out[m] = l[m - 2] - out[m - 2];
+}
+
+template <int P>
+void scaledRadialMoments(double X, int maxPower, double* out) {
+  const int powers = P >= 0 ? P : maxPower;
+  if (powers <= 8) {
+    if (X <= 0.15) return gaussRadialMoments<P, 8>(X, maxPower, out);
+    if (X <= 0.85) return gaussRadialMoments<P, 12>(X, maxPower, out);
+  } else if (X <= 2.0) {
+    return gaussRadialMoments<P, kRadialPoints>(X, maxPower, out);
+  }
+  recurrentRadialMoments<P>(X, maxPower, out);
+}
+
+// J_m(R, H) = H^(m-3) j_m(R / H).
+template <int P>
+void radialMomentsOf(double R, double H, int maxPower, double* out) {
+  const int powers = P >= 0 ? P : maxPower;
+  scaledRadialMoments<P>(R / H, maxPower, out);
+  double scale = 1.0 / (H * H * H);  // H^(m-3)
+  for (int m = 0; m <= powers; ++m) {
+    out[m] *= scale;
+    scale *= H;
+  }
 }
 
 // Coefficients in rho of the orthonormal shifted Legendre polynomials phi_0..phi_d at
@@ -111,12 +148,7 @@ void legendreAlongRay(int d, double t0, double t1, double* coefficients) {
 }  // namespace
 
 void radialMoments(double R, double H, int maxPower, double* out) {
-  scaledRadialMoments(R / H, maxPower, out);
-  double scale = 1.0 / (H * H * H);  // H^(m-3)
-  for (int m = 0; m <= maxPower; ++m) {
-    out[m] *= scale;
-    scale *= H;
-  }
+  radialMomentsOf<-1>(R, H, maxPower, out);
 }
 
 SourceMoments::SourceMoments(const Patch& source, int degree, double accuracy)
@@ -199,9 +231,17 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
 
   double J[kMaxPower + 1];
   double Q[kMaxPower + 1];
-  double A[(kMaxBasisDegree + 1) * (kMaxBasisDegree + 1)];
-  double B[(kMaxBasisDegree + 1) * (kMaxBasisDegree + 1)];
-  double M[(kMaxBasisDegree + 1) * (kMaxBasisDegree + 1)];
+  // phi_i(t0 + t1 rho) = sum_k C[i][k] (t1 rho)^k with C[i][k] = phi_i^(k)(t0) / k!: the
+  // Taylor coefficients at the foot depend on x alone, the powers of the step on the node.
+  // So I[i][j] = sum_(k, l) CU[i][k] CV[j][l] T[k][l], with
+  //   T[k][l] = sum_nodes weight su^k sv^l Q[k + l]
+  // accumulated over the nodes and the small products taken once per point.
+  double CU[(kMaxBasisDegree + 1) * (kMaxBasisDegree + 1)];
+  double CV[(kMaxBasisDegree + 1) * (kMaxBasisDegree + 1)];
+  double T[(kMaxBasisDegree + 1) * (kMaxBasisDegree + 1)];
+  legendreAlongRay(d, footUV.x(), 1.0, CU);
+  legendreAlongRay(d, footUV.y(), 1.0, CV);
+  std::fill(T, T + stride * stride, 0.0);
 
   // One node: direction w from p0 (|w| = R, the ring edge's point), weight `weight`.
   auto node = [&](const Eigen::Vector2d& w, double weight) {
@@ -209,24 +249,16 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
     const Eigen::Vector2d omega = w / R;
     const Eigen::Vector2d step = toParameters_ * omega;  // d(u, v) / d rho
     const double a1 = nx * omega.x() + ny * omega.y();   // d(n_r . (y - x)) / d rho
-    radialMoments(R, H, maxPower, J);
-    for (int k = 0; k <= 2 * d; ++k) Q[k] = kernelScale * (a0 * J[k + 1] + a1 * J[k + 2]);
-    legendreAlongRay(d, footUV.x(), step.x(), A);
-    legendreAlongRay(d, footUV.y(), step.y(), B);
-    // M[j][k] = sum_l B[j][l] Q[k + l]; I[i][j] = sum_k A[i][k] M[j][k].
-    for (int j = 0; j <= d; ++j) {
-      for (int k = 0; k <= d; ++k) {
-        double sum = 0.0;
-        for (int l = 0; l <= j; ++l) sum += B[j * stride + l] * Q[k + l];
-        M[j * stride + k] = sum;
+    radialMomentsOf<D >= 0 ? 2 * D + 2 : -1>(R, H, maxPower, J);
+    for (int k = 0; k <= 2 * d; ++k) Q[k] = weight * (a0 * J[k + 1] + a1 * J[k + 2]);
+    double powerU = 1.0;
+    for (int k = 0; k <= d; ++k) {
+      double powerUV = powerU;
+      for (int l = 0; l <= d; ++l) {
+        T[k * stride + l] += powerUV * Q[k + l];
+        powerUV *= step.y();
       }
-    }
-    for (int i = 0; i <= d; ++i) {
-      for (int j = 0; j <= d; ++j) {
-        double sum = 0.0;
-        for (int k = 0; k <= i; ++k) sum += A[i * stride + k] * M[j * stride + k];
-        out[i * stride + j] += weight * sum;
-      }
+      powerU *= step.x();
     }
   };
 
@@ -271,6 +303,18 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
           node(w, visible.sign(r) * sign * std::fabs(distance) / R2 * (s1 - s0) * rule.weights[k]);
         }
       }
+    }
+  }
+  // I[i][j] = kernelScale sum_k CU[i][k] sum_l CV[j][l] T[k][l] (C lower triangular).
+  for (int i = 0; i <= d; ++i) {
+    for (int j = 0; j <= d; ++j) {
+      double sum = 0.0;
+      for (int k = 0; k <= i; ++k) {
+        double inner = 0.0;
+        for (int l = 0; l <= j; ++l) inner += CV[j * stride + l] * T[k * stride + l];
+        sum += CU[i * stride + k] * inner;
+      }
+      out[i * stride + j] = kernelScale * sum;
     }
   }
 }

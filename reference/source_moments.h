@@ -10,8 +10,8 @@
 // (a0 + a1 rho = n_r . (y - x), affine) and phi_b along a ray from p0 is a polynomial in rho.
 // Each ring edge (a, b) bounds the signed triangle (p0, a, b); over it, the radial integrals
 //   J_m(R, H) = int_0^R rho^m / (rho^2 + H^2)^2 d rho
-// are taken in closed form (recurrences in atan and log, or a 16-point Gauss rule where R <= 2H,
-// which is exact to rounding there), and the angular one by 12-point Gauss rules along the
+// are taken in closed form (recurrences in atan and log), or by a Gauss rule of 8 to 16 points
+// where R is below H or 2H (the recurrences lose digits there; the rule is exact to rounding), and the angular one by 12-point Gauss rules along the
 // edge on pieces no longer than the distance to the integrand's nearest complex singularity
 // (at sqrt(d^2 + H^2) from the edge's closest point to p0, d the distance of the edge's line):
 // a geometric refinement towards p0 that keeps the rule's error near rounding (about 1e-14

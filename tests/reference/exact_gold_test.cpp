@@ -48,28 +48,52 @@ void expectAgreesWithDenseGold(const Link& link, int degree) {
   }
 }
 
-TEST(RadialMoments, MatchCompositeGaussIntegrationAtEveryScale) {
-  // J_m(R, H) = int_0^R rho^m / (rho^2 + H^2)^2, against 200 pieces of 20-point Gauss.
+// J_m(R, H) = int_0^R rho^m / (rho^2 + H^2)^2 by 20-point Gauss on `pieces` pieces graded
+// towards 0 (where the integrand varies on the scale H) as (p / pieces)^grading, in long double.
+long double gradedRadialMoment(double R, double H, int m, int pieces, double grading) {
   const GaussLegendreRule& rule = gaussLegendreUnit(20);
+  long double sum = 0.0L;
+  for (int p = 0; p < pieces; ++p) {
+    const double a = R * std::pow(double(p) / pieces, grading);
+    const double b = R * std::pow(double(p + 1) / pieces, grading);
+    for (int k = 0; k < 20; ++k) {
+      const long double rho = a + (b - a) * rule.nodes[k];
+      const long double d = rho * rho + (long double)H * H;
+      sum += (b - a) * rule.weights[k] * std::pow(rho, m) / (d * d);
+    }
+  }
+  return sum;
+}
+
+TEST(RadialMoments, MatchCompositeGaussIntegrationAtEveryScale) {
+  // Against 200 pieces of 20-point Gauss.
   for (const double H : {1e-3, 0.3, 1.0, 7.0}) {
     for (const double R : {1e-3, 0.05, 0.9, 2.5, 40.0}) {
       double J[19];
       radialMoments(R, H, 18, J);
       for (int m = 0; m <= 18; ++m) {
-        long double expected = 0.0L;
-        constexpr int kPieces = 200;
-        for (int p = 0; p < kPieces; ++p) {
-          // Pieces graded towards 0, where the integrand varies on the scale H.
-          const double a = R * std::pow(double(p) / kPieces, 3.0);
-          const double b = R * std::pow(double(p + 1) / kPieces, 3.0);
-          for (int k = 0; k < 20; ++k) {
-            const long double rho = a + (b - a) * rule.nodes[k];
-            const long double d = rho * rho + (long double)H * H;
-            expected += (b - a) * rule.weights[k] * std::pow(rho, m) / (d * d);
-          }
-        }
+        const long double expected = gradedRadialMoment(R, H, m, 200, 3.0);
         EXPECT_NEAR(J[m], double(expected), 1e-12 * std::fabs(double(expected)))
             << "m " << m << " R " << R << " H " << H;
+      }
+    }
+  }
+}
+
+TEST(RadialMoments, LowPowersMatchCompositeGaussIntegrationAcrossEveryRule) {
+  // Powers up to 8 (degree <= 3) take 8 or 12 Gauss points or the recurrences by R / H:
+  // every branch and both sides of each switch (0.15, 0.85), against 400 pieces of
+  // 20-point Gauss in long double, graded towards 0.
+  for (const int maxPower : {4, 6, 8}) {
+    for (const double X : {1e-4, 0.01, 0.1, 0.15, 0.1501, 0.3, 0.45, 0.4501, 0.6, 0.85, 0.8501,
+                           0.87, 1.0, 1.3, 1.9, 2.0, 2.01, 3.0, 30.0}) {
+      const double H = 0.7, R = X * H;
+      double J[9];
+      radialMoments(R, H, maxPower, J);
+      for (int m = 0; m <= maxPower; ++m) {
+        const long double expected = gradedRadialMoment(R, H, m, 400, 2.0);
+        EXPECT_NEAR(J[m], double(expected), 5e-14 * std::fabs(double(expected)))
+            << "m " << m << " of " << maxPower << ", R / H " << X;
       }
     }
   }
