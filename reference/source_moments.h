@@ -10,9 +10,10 @@
 // (a0 + a1 rho = n_r . (y - x), affine) and phi_b along a ray from p0 is a polynomial in rho.
 // Each ring edge (a, b) bounds the signed triangle (p0, a, b); over it, the radial integrals
 //   J_m(R, H) = int_0^R rho^m / (rho^2 + H^2)^2 d rho
-// are taken in closed form (recurrences in atan and log), or by a Gauss rule of 8 to 16 points
-// where R is below H or 2H (the recurrences lose digits there; the rule is exact to rounding), and the angular one by 12-point Gauss rules along the
-// edge on pieces no longer than the distance to the integrand's nearest complex singularity
+// are taken in closed form (recurrences in atan and log), or, where R / H is small and the
+// recurrences lose digits (below 0.85 for degree <= 3, below 2 above), by a Gauss rule of 8
+// to 16 points that is exact to rounding there; the angular one by 12-point Gauss rules along
+// the edge on pieces no longer than the distance to the integrand's nearest complex singularity
 // (at sqrt(d^2 + H^2) from the edge's closest point to p0, d the distance of the edge's line):
 // a geometric refinement towards p0 that keeps the rule's error near rounding (about 1e-14
 // relative) however close x is to the source. A looser `accuracy` (1e-6 or more) takes 8 edge
