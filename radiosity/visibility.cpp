@@ -1,5 +1,6 @@
 #include "radiosity/visibility.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -109,20 +110,23 @@ VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderSce
 
 // A link's shaft: the convex hull of its two elements, with its bounding box and its
 // supporting planes through an edge of one element and a corner of the other (those with the
-// whole hull on one side, n.x <= offset + tolerance). Built once per link, then tested against
-// every candidate.
+// whole hull on one side, n.x <= offset + tolerance). Built once per link and tested against
+// every candidate; the planes only when a candidate first survives the cheaper tests (box,
+// the elements' planes), which settle most candidates of most links.
 struct VisibilityClassifier::Shaft {
   const Patch* receiver = nullptr;
   const Patch* source = nullptr;
+  std::array<Vec, 8> hull;  // the receiver's corners, then the source's
   Vec low, high;
   double tolerance = 0.0;
+  bool planesBuilt = false;
   int planes = 0;
   std::array<Vec, 64> normals;  // 2 sides x 4 edges x 4 corners x 2 orientations at most
   std::array<double, 64> offsets;
 
   Shaft(const Patch& r, const Patch& s) : receiver(&r), source(&s) {
     const std::array<Vec, 4> rc = r.corners(), sc = s.corners();
-    const std::array<Vec, 8> hull = {rc[0], rc[1], rc[2], rc[3], sc[0], sc[1], sc[2], sc[3]};
+    hull = {rc[0], rc[1], rc[2], rc[3], sc[0], sc[1], sc[2], sc[3]};
     low = hull[0];
     high = hull[0];
     for (const Vec& point : hull) {
@@ -130,36 +134,44 @@ struct VisibilityClassifier::Shaft {
       high = high.cwiseMax(point);
     }
     tolerance = 1e-9 * std::max((high - low).norm(), 1e-300);
+  }
+
+  void buildPlanes() {
+    planesBuilt = true;
     for (int side = 0; side < 2; ++side) {
-      const std::array<Vec, 4>& edges = side == 0 ? rc : sc;
-      const std::array<Vec, 4>& apexes = side == 0 ? sc : rc;
-      for (int k = 0; k < 4; ++k) {
-        const Vec& a = edges[std::size_t(k)];
-        const Vec& b = edges[std::size_t((k + 1) % 4)];
-        for (const Vec& apex : apexes) {
+      const std::size_t edges = side == 0 ? 0 : 4, apexes = side == 0 ? 4 : 0;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const Vec& a = hull[edges + k];
+        const Vec& b = hull[edges + (k + 1) % 4];
+        for (std::size_t c = 0; c < 4; ++c) {
+          const Vec& apex = hull[apexes + c];
           Vec normal = (b - a).cross(apex - a);
           const double length = normal.norm();
           if (length <= 1e-12 * (b - a).norm() * (apex - a).norm()) continue;
           normal /= length;
-          // Either orientation may have the hull behind it.
-          addIfSupporting(normal, normal.dot(a), hull);
-          addIfSupporting(-normal, -normal.dot(a), hull);
+          // Either orientation may have the hull behind it (both, where the hull is flat).
+          const double offset = normal.dot(a);
+          double lowest = normal.dot(hull[0]), highest = lowest;
+          for (const Vec& point : hull) {
+            const double height = normal.dot(point);
+            lowest = std::min(lowest, height);
+            highest = std::max(highest, height);
+          }
+          if (!(highest > offset + tolerance)) add(normal, offset);
+          if (!(-lowest > -offset + tolerance)) add(-normal, -offset);
         }
       }
     }
   }
 
-  void addIfSupporting(const Vec& normal, double offset, const std::array<Vec, 8>& hull) {
-    for (const Vec& point : hull) {
-      if (normal.dot(point) > offset + tolerance) return;  // not a supporting plane
-    }
+  void add(const Vec& normal, double offset) {
     normals[std::size_t(planes)] = normal;
     offsets[std::size_t(planes)] = offset;
     ++planes;
   }
 };
 
-bool VisibilityClassifier::separated(const Shaft& shaft, int patch) const {
+bool VisibilityClassifier::separated(Shaft& shaft, int patch) const {
   const std::array<Vec, 4> occluder = scene_.patches[std::size_t(patch)].patch.corners();
   const double tolerance = shaft.tolerance;
   // Bounding boxes.
@@ -182,6 +194,7 @@ bool VisibilityClassifier::separated(const Shaft& shaft, int patch) const {
     if (allBehind) return true;
   }
   // The occluder wholly on or beyond one of the shaft's supporting planes.
+  if (!shaft.planesBuilt) shaft.buildPlanes();
   for (int k = 0; k < shaft.planes; ++k) {
     const Vec& normal = shaft.normals[std::size_t(k)];
     const double offset = shaft.offsets[std::size_t(k)];
@@ -196,7 +209,7 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
                                               const Patch& source, int sourcePatch,
                                               const std::vector<int>* parentCandidates) const {
   Classification result;
-  const Shaft shaft(receiver, source);
+  Shaft shaft(receiver, source);
   auto consider = [&](int patch) {
     if (patch == receiverPatch || patch == sourcePatch) return;
     if (!separated(shaft, patch)) result.candidates.push_back(patch);
@@ -209,6 +222,15 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
   if (result.candidates.empty()) {
     result.visibility = LinkClass::kUnoccluded;
     return result;
+  }
+  // One candidate that blocks every segment between the elements settles the class without
+  // rays: occluded, provably.
+  for (int patch : result.candidates) {
+    if (blocksShaft(scene_.patches[std::size_t(patch)].patch, receiver, source)) {
+      result.visibility = LinkClass::kOccluded;
+      result.occlusionProven = true;
+      return result;
+    }
   }
   // Rays between stratum centres of the two elements, where the kernel is positive. One
   // visible ray settles the class (partial), so the pairs are traced a packet at a time in
@@ -249,14 +271,6 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
   if (segments.size() > 0 && traceBatch()) result.visibility = LinkClass::kPartial;
   // No pair faces the other way round: nothing to trace, kept partial (conservative).
   if (result.raysCast == 0) result.visibility = LinkClass::kPartial;
-  if (result.visibility == LinkClass::kOccluded) {
-    for (int patch : result.candidates) {
-      if (blocksShaft(scene_.patches[std::size_t(patch)].patch, receiver, source)) {
-        result.occlusionProven = true;
-        break;
-      }
-    }
-  }
   return result;
 }
 

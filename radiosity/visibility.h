@@ -8,7 +8,8 @@
 //      on one side (Haines and Wallace 1994, "Shaft culling for efficient ray-cast
 //      radiosity"). A plane test can only fail to separate, never separate wrongly, so a
 //      patch that meets the shaft is always a candidate.
-//   2. No candidate: unoccluded. Otherwise rays on a 4x4 by 4x4 grid of element points (the
+//   2. No candidate: unoccluded. A candidate that covers the shaft (blocksShaft): occluded,
+//      proven, without rays. Otherwise rays on a 4x4 by 4x4 grid of element points (the
 //      pairs where the unoccluded kernel is positive): all blocked means occluded; anything
 //      else, even all rays visible, is partial.
 // A sub-link's shaft lies inside its parent's, so its candidates are a subset of the parent's.
@@ -53,7 +54,8 @@ VisibilityVariation visibilityVariation(const OccluderScene& occluders, const Pa
 struct Classification {
   LinkClass visibility = LinkClass::kUnoccluded;
   // For an occluded link: whether one candidate provably blocks every segment between the
-  // elements (blocksShaft); otherwise the class rests on the rays alone.
+  // elements (blocksShaft, tried before any ray: then raysCast is 0); otherwise the class
+  // rests on the rays alone.
   bool occlusionProven = false;
   std::vector<int> candidates;  // patch indices
   std::uint64_t raysCast = 0;
@@ -80,7 +82,7 @@ class VisibilityClassifier {
 
  private:
   struct Shaft;
-  bool separated(const Shaft& shaft, int patch) const;
+  bool separated(Shaft& shaft, int patch) const;  // builds the shaft's planes when needed
 
   const Scene& scene_;
   const OccluderScene& occluders_;

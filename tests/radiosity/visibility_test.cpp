@@ -168,13 +168,24 @@ TEST(VisibilityTest, OneVisibleGridRayMakesThePartialClass) {
   EXPECT_EQ(result.candidates.size(), 4u);
 }
 
-TEST(VisibilityTest, OnlyAnOccludedLinkTracesEveryPair) {
-  // Opposed squares: all 256 pairs face each other. A full wall blocks them all, and every
-  // one must be traced to call the link occluded; a speck blocks none, and the first packet
-  // of 16 already shows a visible ray.
+TEST(VisibilityTest, OnlyAnUnprovenOcclusionTracesEveryPair) {
+  // Opposed squares: all 256 pairs face each other. A full wall covers the shaft: proven
+  // occluded by the geometry, with no ray cast. Two walls with a slit narrower than the rays'
+  // spacing block every ray but prove nothing: every pair is traced before the link is called
+  // occluded. A speck blocks none, and the first packet of 16 already shows a visible ray.
   const ClassifierScene wall(
       squaresWith({Patch::make(Vec(-1, -1, 0.5), Vec(3, 0, 0), Vec(0, 3, 0), "wall")}));
-  EXPECT_EQ(classifySquares(wall).raysCast, 256u);
+  const Classification covered = classifySquares(wall);
+  EXPECT_EQ(covered.visibility, LinkClass::kOccluded);
+  EXPECT_TRUE(covered.occlusionProven);
+  EXPECT_EQ(covered.raysCast, 0u);
+  const ClassifierScene slit(
+      squaresWith({Patch::make(Vec(-1, -1, 0.5), Vec(1.53, 0, 0), Vec(0, 3, 0), "left"),
+                   Patch::make(Vec(0.54, -1, 0.5), Vec(1.5, 0, 0), Vec(0, 3, 0), "right")}));
+  const Classification blocked = classifySquares(slit);
+  EXPECT_EQ(blocked.visibility, LinkClass::kOccluded);
+  EXPECT_FALSE(blocked.occlusionProven);
+  EXPECT_EQ(blocked.raysCast, 256u);
   const ClassifierScene speck(squaresWith(
       {Patch::make(Vec(0.01, 0.01, 0.5), Vec(0.005, 0, 0), Vec(0, 0.005, 0), "speck")}));
   const Classification open = classifySquares(speck);
