@@ -11,8 +11,11 @@
 // Each ring edge (a, b) bounds the signed triangle (p0, a, b); over it, the radial integrals
 //   J_m(R, H) = int_0^R rho^m / (rho^2 + H^2)^2 d rho
 // are taken in closed form (recurrences in atan and log), or, where R / H is small and the
-// recurrences lose digits (below 0.85 for degree <= 3, below 2 above), by a Gauss rule of 8
-// to 16 points that is exact to rounding there; the angular one by 12-point Gauss rules along
+// recurrences lose digits (below 0.85 for degree <= 3, below 2 above), by a Gauss rule of 12
+// (16 above degree 3) points that is exact to rounding there. At degrees 0-3 the edge nodes
+// go eight at a time through branch-free loops over the lanes (vector instructions; with GCC
+// glibc's vector atan and log1p, within 4 units in the last place), each lane keeping its
+// own branch (laneRadialMoments). The angular integral: 12-point Gauss rules along
 // the edge on pieces no longer than the distance to the integrand's nearest complex singularity
 // (at sqrt(d^2 + H^2) from the edge's closest point to p0, d the distance of the edge's line):
 // a geometric refinement towards p0 that keeps the rule's error near rounding (about 1e-14
@@ -67,5 +70,10 @@ class SourceMoments {
 
 // J_m(R, H) for m = 0..maxPower, written to out[m]. Exposed for tests.
 void radialMoments(double R, double H, int maxPower, double* out);
+
+// The eight-lane form the inner integral uses at degrees 0-3 (maxPower = 2d + 2: 2, 4, 6 or
+// 8; InputError otherwise): out[m * 8 + k] = J_m(X[k], 1) for the 8 values X[0..7] > 0.
+// Exposed for tests.
+void laneRadialMoments(const double* X, int maxPower, double* out);
 
 }  // namespace radquad
