@@ -9,6 +9,19 @@
 #include "kernel/legendre_basis.h"
 #include "quadrature/gauss_legendre.h"
 
+// With -fopenmp-simd (GCC, reference/CMakeLists.txt) the loops over a node batch's lanes that
+// call atan and log1p call glibc's vector versions (libmvec: 8 lanes with AVX-512, 4 with
+// AVX2), which err by at most 4 units in the last place; elsewhere, the scalar functions.
+// The declarations add the vector variants to glibc's own (global, C linkage) functions.
+#if defined(RADQUAD_VECTOR_MATH)
+extern "C" {
+#pragma omp declare simd notinbranch
+double atan(double) noexcept;
+#pragma omp declare simd notinbranch
+double log1p(double) noexcept;
+}
+#endif
+
 namespace radquad {
 namespace {
 
@@ -151,17 +164,6 @@ void legendreAlongRay(int d, double t0, double t1, double* coefficients) {
 // instructions.
 constexpr int kLanes = 8;
 
-// With -fopenmp-simd (GCC, reference/CMakeLists.txt) the lane loops that call atan and log1p
-// call glibc's vector versions (libmvec: 8 lanes with AVX-512, 4 with AVX2), which err by at
-// most 4 units in the last place; elsewhere, the scalar functions.
-#if defined(RADQUAD_VECTOR_MATH)
-extern "C" {
-#pragma omp declare simd notinbranch
-double atan(double) noexcept;
-#pragma omp declare simd notinbranch
-double log1p(double) noexcept;
-}
-#endif
 constexpr double kRecurrenceFrom = 0.85;
 
 struct NodeBatch {
@@ -179,7 +181,7 @@ void laneRadialMoments(const double* X, double (&j)[P + 1][kLanes]) {
   bool small = false, large = false;
   for (int k = 0; k < kLanes; ++k) {
     small = small || X[k] <= kRecurrenceFrom;
-    large = large || X[k] > kRecurrenceFrom;
+    large = large || !(X[k] <= kRecurrenceFrom);  // NaN included: it then propagates
   }
   for (int m = 0; m <= P; ++m) {
     for (int k = 0; k < kLanes; ++k) j[m][k] = 0.0;
@@ -203,16 +205,16 @@ void laneRadialMoments(const double* X, double (&j)[P + 1][kLanes]) {
   }
   if (large) {
     double l[P + 1][kLanes], jr[P + 1][kLanes];
-    double x2[kLanes];
-    for (int k = 0; k < kLanes; ++k) x2[k] = X[k] * X[k];
+    double squares[kLanes];
+    for (int k = 0; k < kLanes; ++k) squares[k] = X[k] * X[k];
 #if defined(RADQUAD_VECTOR_MATH)
 #pragma omp simd
 #endif
-    for (int k = 0; k < kLanes; ++k) l[0][k] = atan(X[k]);
+    for (int k = 0; k < kLanes; ++k) l[0][k] = ::atan(X[k]);
 #if defined(RADQUAD_VECTOR_MATH)
 #pragma omp simd
 #endif
-    for (int k = 0; k < kLanes; ++k) l[1][k] = 0.5 * log1p(x2[k]);
+    for (int k = 0; k < kLanes; ++k) l[1][k] = 0.5 * ::log1p(squares[k]);
     double power[kLanes];
     for (int k = 0; k < kLanes; ++k) power[k] = X[k];
     for (int m = 2; m <= P; ++m) {
@@ -222,9 +224,9 @@ void laneRadialMoments(const double* X, double (&j)[P + 1][kLanes]) {
       }
     }
     for (int k = 0; k < kLanes; ++k) {
-      const double x2 = X[k] * X[k], inverse = 1.0 / (1.0 + x2);
+      const double inverse = 1.0 / (1.0 + squares[k]);
       jr[0][k] = 0.5 * (X[k] * inverse + l[0][k]);
-      jr[1][k] = 0.5 * x2 * inverse;
+      jr[1][k] = 0.5 * squares[k] * inverse;
     }
     for (int m = 2; m <= P; ++m) {
       for (int k = 0; k < kLanes; ++k) jr[m][k] = l[m - 2][k] - jr[m - 2][k];
@@ -290,11 +292,12 @@ void sumLanes(const double* laneT, int entries, double* T) {
   }
 }
 
-// Fills the lanes past the batch's count with a harmless node (direction (H, 0), no weight).
-void pad(NodeBatch& batch, double H) {
+// Fills the lanes past the batch's count (at least one is used) with copies of the first
+// node and no weight: finite values that add exactly nothing, in the first node's branch.
+void pad(NodeBatch& batch) {
   for (int k = batch.count; k < kLanes; ++k) {
-    batch.wx[k] = H;
-    batch.wy[k] = 0.0;
+    batch.wx[k] = batch.wx[0];
+    batch.wy[k] = batch.wy[0];
     batch.weight[k] = 0.0;
   }
 }
@@ -493,7 +496,7 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
   }
   if constexpr (kBatched) {
     if (batch.count > 0) {
-      pad(batch, H);
+      pad(batch);
       accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, laneT);
     }
     sumLanes(laneT, stride * stride, T);

@@ -106,11 +106,13 @@ TEST(RadialMoments, EightLanesMatchCompositeGaussIntegrationWhateverTheirNeighbo
   // The inner integral's eight-lane form (degrees 0-3): the 12-point rule up to 0.85, the
   // recurrences (glibc's vector atan and log1p where built with them) above. Batches all on
   // one side of the switch, and batches that straddle it (each lane must keep its own
-  // branch), against 400 pieces of 20-point Gauss in long double.
+  // branch), against 400 pieces of 20-point Gauss in long double. The bound allows glibc's
+  // documented 4 units in the last place of the vector atan and log1p, which the recurrences
+  // amplify about 3.5 times at the switch (j_8 at R / H = 0.85 is 0.01): 2e-13 relative.
   const std::vector<std::array<double, 8>> batches = {
       {1e-4, 0.01, 0.1, 0.15, 0.3, 0.5, 0.7, 0.85},
       {0.8501, 0.87, 1.0, 1.3, 2.0, 3.0, 30.0, 300.0},
-      {0.84, 0.86, 1e-3, 5.0, 0.85, 0.8500001, 0.2, 1.7},
+      {0.84, 0.86, 1e-3, 5.0, 0.85, 0.8500001, 0.31, 0.35},
   };
   for (const int maxPower : {2, 4, 6, 8}) {
     for (const auto& X : batches) {
@@ -119,7 +121,7 @@ TEST(RadialMoments, EightLanesMatchCompositeGaussIntegrationWhateverTheirNeighbo
       for (int k = 0; k < 8; ++k) {
         for (int m = 0; m <= maxPower; ++m) {
           const long double expected = gradedRadialMoment(X[std::size_t(k)], 1.0, m, 400, 2.0);
-          EXPECT_NEAR(out[m * 8 + k], double(expected), 5e-14 * std::fabs(double(expected)))
+          EXPECT_NEAR(out[m * 8 + k], double(expected), 2e-13 * std::fabs(double(expected)))
               << "m " << m << " of " << maxPower << ", X " << X[std::size_t(k)];
         }
       }
