@@ -57,7 +57,8 @@ SceneLinkPool::SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed
   // The scenes are solved side by side (a solve keeps about 1.3 cores busy); each one's links
   // are then appended in scene order, so the pool does not depend on which finished first.
   struct Solved {
-    std::vector<SceneLinkEntry> unoccluded, partial;
+    std::vector<ElementRecord> elements;
+    std::vector<CompactLink> unoccluded, partial;
     std::size_t total = 0, occluded = 0;
   };
   std::vector<Solved> solved(scenes_.size());
@@ -70,6 +71,11 @@ SceneLinkPool::SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed
     solver.solve();
     Solved& out = solved[index];
     const Hierarchy& hierarchy = solver.hierarchy();
+    out.elements.reserve(hierarchy.size());
+    for (std::size_t e = 0; e < hierarchy.size(); ++e) {
+      const Element& element = hierarchy[int(e)];
+      out.elements.push_back(ElementRecord{element.geometry, element.patch, element.level});
+    }
     for (const SolverLink& link : solver.links()) {
       if (link.split) continue;  // replaced by its children
       if (link.visibility == LinkClass::kOccluded) {  // inactive: carries nothing
@@ -79,21 +85,16 @@ SceneLinkPool::SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed
       }
       if (!link.active) continue;
       ++out.total;
-      const Element& receiver = hierarchy[link.receiver];
-      const Element& source = hierarchy[link.source];
-      SceneLinkEntry entry{int(index),     receiver.geometry, source.geometry, receiver.patch,
-                           source.patch,   receiver.level,    source.level};
       (link.visibility == LinkClass::kPartial ? out.partial : out.unoccluded)
-          .push_back(std::move(entry));
+          .push_back(CompactLink{int(index), link.receiver, link.source});
     }
   }, tbb::simple_partitioner());
   for (Solved& scene : solved) {
     total_ += scene.total;
     occluded_ += scene.occluded;
-    unoccluded_.insert(unoccluded_.end(), std::make_move_iterator(scene.unoccluded.begin()),
-                       std::make_move_iterator(scene.unoccluded.end()));
-    partial_.insert(partial_.end(), std::make_move_iterator(scene.partial.begin()),
-                    std::make_move_iterator(scene.partial.end()));
+    elements_.push_back(std::move(scene.elements));
+    unoccluded_.insert(unoccluded_.end(), scene.unoccluded.begin(), scene.unoccluded.end());
+    partial_.insert(partial_.end(), scene.partial.begin(), scene.partial.end());
   }
   // A seeded Fisher-Yates shuffle per class: candidate k is the k-th of a uniform sample.
   for (auto* links : {&unoccluded_, &partial_}) {
@@ -108,8 +109,13 @@ std::size_t SceneLinkPool::size(StudyClass linkClass) const {
   return linkClass == StudyClass::partial ? partial_.size() : unoccluded_.size();
 }
 
-const SceneLinkEntry& SceneLinkPool::entry(StudyClass linkClass, std::size_t k) const {
-  return linkClass == StudyClass::partial ? partial_.at(k) : unoccluded_.at(k);
+SceneLinkEntry SceneLinkPool::entry(StudyClass linkClass, std::size_t k) const {
+  const CompactLink& link = linkClass == StudyClass::partial ? partial_.at(k) : unoccluded_.at(k);
+  const std::vector<ElementRecord>& elements = elements_[std::size_t(link.scene)];
+  const ElementRecord& receiver = elements[std::size_t(link.receiver)];
+  const ElementRecord& source = elements[std::size_t(link.source)];
+  return SceneLinkEntry{link.scene,     receiver.geometry, source.geometry, receiver.patch,
+                        source.patch,   receiver.level,    source.level};
 }
 
 LinkGeometry SceneLinkPool::geometry(const SceneLinkEntry& entry) const {

@@ -52,7 +52,7 @@ class SceneLinkPool {
 
   // Links of the class in sampling order (StudyClass::unoccluded or partial).
   std::size_t size(StudyClass linkClass) const;
-  const SceneLinkEntry& entry(StudyClass linkClass, std::size_t k) const;
+  SceneLinkEntry entry(StudyClass linkClass, std::size_t k) const;
   // The link with every patch of its scene but its own two as occluders.
   LinkGeometry geometry(const SceneLinkEntry& entry) const;
   std::size_t totalLinks() const { return total_; }
@@ -60,9 +60,19 @@ class SceneLinkPool {
   const std::vector<std::string>& sceneNames() const { return names_; }
 
  private:
+  // A link as its scene and its two elements (the pool holds a solve's million links or
+  // more: the elements' geometry is kept once per scene, not once per link).
+  struct CompactLink {
+    int scene = 0, receiver = 0, source = 0;
+  };
+  struct ElementRecord {
+    Patch geometry;
+    int patch = 0, level = 0;
+  };
   std::vector<std::string> names_;
   std::vector<Scene> scenes_;
-  std::vector<SceneLinkEntry> unoccluded_, partial_;
+  std::vector<std::vector<ElementRecord>> elements_;  // per scene, by element index
+  std::vector<CompactLink> unoccluded_, partial_;
   std::size_t total_ = 0, occluded_ = 0;
 };
 

@@ -58,7 +58,7 @@ CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& sc
                                     std::size_t classIndex, StudyClass linkClass,
                                     std::uint64_t index) {
   if (scorers.pool != nullptr) {
-    const SceneLinkEntry& entry = scorers.pool->entry(linkClass, std::size_t(index));
+    const SceneLinkEntry entry = scorers.pool->entry(linkClass, std::size_t(index));
     return {scorers.pool->geometry(entry).build(), orientationOf(entry.receiver, entry.source),
             OccluderKind::scene, scorers.pool->sceneNames().at(std::size_t(entry.scene))};
   }

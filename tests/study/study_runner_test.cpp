@@ -241,7 +241,7 @@ TEST(SceneLinks, ThePoolHoldsTheSolvesFinalLinksAsPatchesWithTheRestOfTheSceneAs
             pool.totalLinks());
   ASSERT_GT(pool.size(StudyClass::partial), 10u);
   for (std::size_t k = 0; k < 10; ++k) {
-    const SceneLinkEntry& entry = pool.entry(StudyClass::partial, k);
+    const SceneLinkEntry entry = pool.entry(StudyClass::partial, k);
     EXPECT_NE(entry.receiverPatch, entry.sourcePatch);
     // Elements lie inside their patches: same plane, area at most the patch's.
     const Patch& patch = scene.patches[std::size_t(entry.receiverPatch)].patch;
@@ -265,7 +265,7 @@ TEST(SceneLinks, APoolOfTwoScenesHoldsBothScenesLinks) {
   const std::size_t patches[2] = {loadScene("cornell").patches.size(), loadScene("slats").patches.size()};
   int seen[2] = {0, 0};
   for (std::size_t k = 0; k < both.size(StudyClass::partial); ++k) {
-    const SceneLinkEntry& entry = both.entry(StudyClass::partial, k);
+    const SceneLinkEntry entry = both.entry(StudyClass::partial, k);
     ASSERT_TRUE(entry.scene == 0 || entry.scene == 1);
     ++seen[entry.scene];
     if (k < 20) {
