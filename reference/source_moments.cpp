@@ -35,8 +35,12 @@ constexpr int kRadialPoints = 16;
 // polynomial weights cancel most.
 int edgePointsFor(double accuracy) { return accuracy < 1e-6 ? 12 : 8; }
 
-// j_m(X) = int_0^X r^m / (1 + r^2)^2 dr, m = 0..maxPower (P: maxPower as a compile-time
-// constant, -1: at run time; N: the Gauss rule's points, a multiple of 4).
+// Where R / H reaches this, the radial moments of degrees <= 3 (powers <= 8) are taken by
+// the recurrences; below, by a Gauss rule (scaledRadialMoments, laneRadialMoments).
+constexpr double kRecurrenceFrom = 0.85;
+
+// j_m(X) = int_0^X r^m / (1 + r^2)^2 dr, m = 0..maxPower (N: the Gauss rule's points, a
+// multiple of 4).
 // Where X is small the recurrences (below) lose digits (l_m is a difference of terms about
 // X^-2 times larger than itself, at every step), so a Gauss rule takes them. The integrand's
 // only singularities are the poles at r = +-i: the smaller X, the larger their Bernstein
@@ -44,9 +48,8 @@ int edgePointsFor(double accuracy) { return accuracy < 1e-6 ? 12 : 8; }
 // measured against 30-digit quadrature on 400 values of X: 8 points up to X = 0.15, 12 up to
 // 0.85 and the recurrences above 0.85 all err by at most 1.5e-14 relative. Higher powers lose
 // more in the recurrences: 16 points up to X = 2 (below 1e-13).
-template <int P, int N>
+template <int N>
 void gaussRadialMoments(double X, int maxPower, double* out) {
-  const int powers = P >= 0 ? P : maxPower;
   static const GaussLegendreRule& rule = gaussLegendreUnit(N);
   double r[N], term[N];
   for (int k = 0; k < N; ++k) {
@@ -54,7 +57,7 @@ void gaussRadialMoments(double X, int maxPower, double* out) {
     const double denominator = 1.0 + r[k] * r[k];
     term[k] = X * rule.weights[k] / (denominator * denominator);
   }
-  for (int m = 0; m <= powers; ++m) {
+  for (int m = 0; m <= maxPower; ++m) {
     // Four partial sums: short dependency chains.
     double sum[4] = {0.0, 0.0, 0.0, 0.0};
     for (int k = 0; k < N; k += 4) {
@@ -66,45 +69,29 @@ void gaussRadialMoments(double X, int maxPower, double* out) {
 }
 
 // Recurrences: l_m = int r^m / (1 + r^2) = X^(m-1) / (m-1) - l_(m-2), j_m = l_(m-2) - j_(m-2).
-template <int P>
 void recurrentRadialMoments(double X, int maxPower, double* out) {
-  const int powers = P >= 0 ? P : maxPower;
   const double X2 = X * X;
   std::array<double, kMaxPower + 1> l{};
   l[0] = std::atan(X);
-  if (powers >= 1) l[1] = 0.5 * std::log1p(X2);
+  if (maxPower >= 1) l[1] = 0.5 * std::log1p(X2);
   double power = X;  // X^(m-1)
-  for (int m = 2; m <= powers; ++m) {
+  for (int m = 2; m <= maxPower; ++m) {
     l[m] = power / double(m - 1) - l[m - 2];
     power *= X;
   }
   out[0] = 0.5 * (X / (1.0 + X2) + l[0]);
-  if (powers >= 1) out[1] = 0.5 * X2 / (1.0 + X2);
-  for (int m = 2; m <= powers; ++m) out[m] = l[m - 2] - out[m - 2];
+  if (maxPower >= 1) out[1] = 0.5 * X2 / (1.0 + X2);
+  for (int m = 2; m <= maxPower; ++m) out[m] = l[m - 2] - out[m - 2];
 }
 
-template <int P>
 void scaledRadialMoments(double X, int maxPower, double* out) {
-  const int powers = P >= 0 ? P : maxPower;
-  if (powers <= 8) {
-    if (X <= 0.15) return gaussRadialMoments<P, 8>(X, maxPower, out);
-    if (X <= 0.85) return gaussRadialMoments<P, 12>(X, maxPower, out);
+  if (maxPower <= 8) {
+    if (X <= 0.15) return gaussRadialMoments<8>(X, maxPower, out);
+    if (X <= kRecurrenceFrom) return gaussRadialMoments<12>(X, maxPower, out);
   } else if (X <= 2.0) {
-    return gaussRadialMoments<P, kRadialPoints>(X, maxPower, out);
+    return gaussRadialMoments<kRadialPoints>(X, maxPower, out);
   }
-  recurrentRadialMoments<P>(X, maxPower, out);
-}
-
-// J_m(R, H) = H^(m-3) j_m(R / H).
-template <int P>
-void radialMomentsOf(double R, double H, int maxPower, double* out) {
-  const int powers = P >= 0 ? P : maxPower;
-  scaledRadialMoments<P>(R / H, maxPower, out);
-  double scale = 1.0 / (H * H * H);  // H^(m-3)
-  for (int m = 0; m <= powers; ++m) {
-    out[m] *= scale;
-    scale *= H;
-  }
+  recurrentRadialMoments(X, maxPower, out);
 }
 
 // Coefficients in rho of the orthonormal shifted Legendre polynomials phi_0..phi_d at
@@ -163,8 +150,6 @@ void legendreAlongRay(int d, double t0, double t1, double* coefficients) {
 // is one loop over the lanes with no branch, which the compiler turns into vector
 // instructions.
 constexpr int kLanes = 8;
-
-constexpr double kRecurrenceFrom = 0.85;
 
 struct NodeBatch {
   double wx[kLanes], wy[kLanes], weight[kLanes];
@@ -304,8 +289,14 @@ void pad(NodeBatch& batch) {
 
 }  // namespace
 
+// J_m(R, H) = H^(m-3) j_m(R / H).
 void radialMoments(double R, double H, int maxPower, double* out) {
-  radialMomentsOf<-1>(R, H, maxPower, out);
+  scaledRadialMoments(R / H, maxPower, out);
+  double scale = 1.0 / (H * H * H);  // H^(m-3)
+  for (int m = 0; m <= maxPower; ++m) {
+    out[m] *= scale;
+    scale *= H;
+  }
 }
 
 void laneRadialMoments(const double* X, int maxPower, double* out) {
@@ -421,7 +412,7 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
     const Eigen::Vector2d omega = w / R;
     const Eigen::Vector2d step = toParameters_ * omega;  // d(u, v) / d rho
     const double a1 = nx * omega.x() + ny * omega.y();   // d(n_r . (y - x)) / d rho
-    radialMomentsOf<D >= 0 ? 2 * D + 2 : -1>(R, H, maxPower, J);
+    radialMoments(R, H, maxPower, J);
     for (int k = 0; k <= 2 * d; ++k) Q[k] = weight * (a0 * J[k + 1] + a1 * J[k + 2]);
     double powerU = 1.0;
     for (int k = 0; k <= d; ++k) {
