@@ -79,7 +79,9 @@ struct GoldReference {
   // stratified, whose error is statistical).
   bool converged = false;
   int gaussPoints = 0;  // per axis, Gauss only
-  std::uint64_t kernelEvaluations = 0;  // Gauss and dense stratified
+  // Kernel evaluations spent: the Gauss sequence's (also when the link then went to another
+  // method) and the dense draws'; the exact gold's inner integrals are not evaluations.
+  std::uint64_t kernelEvaluations = 0;
   std::uint64_t receiverPoints = 0;     // exact visibility: inner integrals taken
   std::size_t shaftOccluders = 0;       // exact visibility: occluder polygons in the shaft
   std::string outerMethod;              // exact visibility: "critical lines" or "genz-malik"

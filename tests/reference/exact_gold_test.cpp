@@ -207,6 +207,33 @@ TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
   EXPECT_NEAR(touching.formFactor, expected, 2e-7 * expected);
 }
 
+TEST(GoldReference, LinksWhoseKernelIsNotSmoothGoStraightToTheExactGold) {
+  // Sharing an edge at right angles (singular along it), and a source cut by the receiver's
+  // plane (the clamped cosine's discontinuity): the Gauss sequence would end unconverged at
+  // 48^4 points; the gold skips it (no kernel evaluations) and integrates exactly.
+  const Patch floor = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "floor");
+  const Patch wall = Patch::make({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, "wall");
+  const GoldReference touching = goldReference(Link{floor, wall, nullptr}, 0, 0);
+  EXPECT_EQ(touching.method, "exact visibility");
+  EXPECT_EQ(touching.kernelEvaluations, 0u);
+  EXPECT_TRUE(touching.converged);
+  const double expected = analytic::perpendicularRectangles(1, 1, 1);
+  EXPECT_NEAR(touching.formFactor, expected, 2e-7 * expected);
+  // A wall from z = -1 to z = 1 along the floor's far edge (y = 1), facing it: its lower half
+  // lies behind the floor's plane, its upper half is the perpendicular pair above, so the
+  // form factor (per unit receiver area) is the same.
+  const Patch through = Patch::make({0, 1, -1}, {1, 0, 0}, {0, 0, 2}, "through");
+  ASSERT_NEAR(through.normal.y(), -1.0, 1e-15);
+  const GoldReference cut = goldReference(Link{floor, through, nullptr}, 0, 0);
+  EXPECT_EQ(cut.method, "exact visibility");
+  EXPECT_EQ(cut.kernelEvaluations, 0u);
+  EXPECT_TRUE(cut.converged);
+  EXPECT_NEAR(cut.formFactor, expected, 2e-7 * expected);
+  // A smooth link keeps the Gauss sequence.
+  const Patch facing = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "facing");
+  EXPECT_EQ(goldReference(Link{floor, facing, nullptr}, 0, 0).method, "gauss product");
+}
+
 TEST(ExactGold, SkewPolygonsMatchTheContourFormula) {
   // A tilted, rotated pair, against the double contour integral of ln r (an independent
   // closed-form method: no area integration).
