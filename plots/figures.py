@@ -15,7 +15,7 @@ Tables scored against the gold (the default; not with `--no-gold`) are drawn aga
 10,000-sample reference as one more bar (its own error against the gold). Tables of
 scene-derived links (fig1-scene.json, fig2-scene.json, when present) are drawn the same way.
 
-Usage: /usr/bin/python3 plots/figures.py --results results --plots plots
+Usage: /usr/bin/python3 plots/figures.py --results results --plots plots [--only fig1 ...]
 """
 import argparse
 import json
@@ -203,15 +203,23 @@ def breakdown_figure(table, plots, stem):
     plt.close(figure)
 
 
+FIGURES = {"fig1": figure1, "fig2": figure2, "fig1-scene": figure1, "fig2-scene": figure2}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--results", default="results")
     parser.add_argument("--plots", default="plots")
+    parser.add_argument("--only", action="append", choices=sorted(FIGURES),
+                        help="draw this table's figures alone (repeatable; default: every table, "
+                        "the scene-derived ones when present)")
     arguments = parser.parse_args()
     os.makedirs(arguments.plots, exist_ok=True)
-    for stem, draw in (("fig1", figure1), ("fig2", figure2), ("fig1-scene", figure1), ("fig2-scene", figure2)):
+    for stem, draw in FIGURES.items():
+        if arguments.only and stem not in arguments.only:
+            continue
         path = os.path.join(arguments.results, stem + ".json")
-        if stem.endswith("-scene") and not os.path.exists(path):
+        if stem.endswith("-scene") and not arguments.only and not os.path.exists(path):
             continue
         table = load(path)
         draw(table, arguments.plots, stem)

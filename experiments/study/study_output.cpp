@@ -1,9 +1,15 @@
 #include "experiments/study/study_output.h"
 
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 
 #include "experiments/atomic_file.h"
@@ -84,6 +90,64 @@ void runPlotScript(const std::string& python, const std::string& script,
   if (!quiet) std::cerr << "radquad " << commandName << ": " << command << "\n";
   if (std::system(command.c_str()) != 0) {
     throw InputError("plots/" + script + " failed (is matplotlib installed for " + python + "?)");
+  }
+}
+
+BackgroundPlots::BackgroundPlots(std::string python, std::string script,
+                                 std::filesystem::path results, std::filesystem::path plots,
+                                 std::string commandName, bool quiet)
+    : python_(std::move(python)),
+      script_(std::move(script)),
+      commandName_(std::move(commandName)),
+      results_(std::move(results)),
+      plots_(std::move(plots)),
+      quiet_(quiet) {}
+
+BackgroundPlots::~BackgroundPlots() {
+  for (const Job& job : running_) {
+    int status = 0;
+    while (waitpid(job.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+  }
+}
+
+void BackgroundPlots::start(const std::string& stem) {
+  const std::vector<std::string> words = {python_,          (dataRoot() / "plots" / script_).string(),
+                                          "--results",      results_.string(),
+                                          "--plots",        plots_.string(),
+                                          "--only",         stem};
+  if (!quiet_) {
+    std::string echoed;
+    for (const std::string& word : words) {
+      if (!echoed.empty()) echoed += ' ';
+      echoed += shellQuoted(word);
+    }
+    std::cerr << "radquad " << commandName_ << ": " << echoed << " &\n";
+  }
+  std::vector<char*> argv;
+  for (const std::string& word : words) argv.push_back(const_cast<char*>(word.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int error = posix_spawnp(&pid, python_.c_str(), nullptr, nullptr, argv.data(), ::environ);
+  if (error != 0) {
+    throw InputError("--python " + python_ + ": cannot start it for plots/" + script_ + ": " +
+                     std::strerror(error));
+  }
+  running_.push_back({int(pid), stem});
+}
+
+void BackgroundPlots::finish() {
+  std::string failed;
+  for (const Job& job : running_) {
+    int status = 0;
+    while (waitpid(job.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (failed.empty() && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) failed = job.stem;
+  }
+  running_.clear();
+  if (!failed.empty()) {
+    throw InputError("plots/" + script_ + " failed on " + (results_ / (failed + ".json")).string() +
+                     " (is matplotlib installed for " + python_ + "?)");
   }
 }
 

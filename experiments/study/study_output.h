@@ -38,6 +38,33 @@ void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet);
 
+// Plot scripts run in the background, beside the computation that follows: start(stem) runs
+// `python plots/SCRIPT --results RESULTS --plots PLOTS --only STEM` without waiting (echoed on
+// stderr as "radquad COMMAND: ..." unless quiet); finish() waits for every one started and
+// throws InputError naming the first that failed. The destructor waits for those still
+// running (their outputs are written atomically by the script), without throwing.
+class BackgroundPlots {
+ public:
+  BackgroundPlots(std::string python, std::string script, std::filesystem::path results,
+                  std::filesystem::path plots, std::string commandName, bool quiet);
+  BackgroundPlots(const BackgroundPlots&) = delete;
+  BackgroundPlots& operator=(const BackgroundPlots&) = delete;
+  ~BackgroundPlots();
+
+  void start(const std::string& stem);
+  void finish();
+
+ private:
+  struct Job {
+    int pid;
+    std::string stem;
+  };
+  std::string python_, script_, commandName_;
+  std::filesystem::path results_, plots_;
+  bool quiet_;
+  std::vector<Job> running_;
+};
+
 // The run record of a result file: in its folder, its stem + ".run.json" (results/fig1.json:
 // results/fig1.run.json). .gitignore keeps run records out of the repository.
 std::filesystem::path runRecordPath(const std::filesystem::path& result);

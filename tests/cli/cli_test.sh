@@ -113,6 +113,21 @@ expect_error out_is_a_pipe "not a regular file (a device, a pipe or a socket)" t
 expect_error trace_threads "--threads: Value 99999 not in range" trace cornell --threads 99999
 expect_error figures_python "--python /no/such/python: cannot run it" figures --quick --quiet --python /no/such/python --results "$scratch/fig_results" --plots "$scratch/fig_plots"
 [ ! -e "$scratch/fig_results" ]; check figures_python_wrote_nothing $?
+# A plot that fails in the background (an interpreter that imports matplotlib but fails on
+# one table) fails the command, naming that table, once every suite is written.
+cat >"$scratch/failing_python" <<'SH'
+#!/bin/sh
+[ "$1" = "-c" ] && exit 0
+for word in "$@"; do [ "$word" = fig2-scene ] && exit 1; done
+exit 0
+SH
+chmod +x "$scratch/failing_python"
+expect_error figures_plot_fails "plots/figures.py failed on $scratch/fig_results/fig2-scene.json" figures --quick --quiet --no-gold --rules FullGauss,Stratified,MonteCarlo,NRook --python "$scratch/failing_python" --results "$scratch/fig_results" --plots "$scratch/fig_plots"
+missing=0
+for table in fig1 fig2 fig1-scene fig2-scene claims; do
+  [ -s "$scratch/fig_results/$table.json" ] || { echo "figures_plot_fails: $table.json missing"; missing=1; }
+done
+check figures_plot_fails_kept_the_tables $missing
 expect_error sample_budget "exceed the budget of 1e10 kernel evaluations per link" link "$fixtures/good_link.json" --rule MonteCarlo:10000000 --trials 100000
 expect_error input_is_a_folder "is a folder" link "$fixtures" --rule FullGauss
 
