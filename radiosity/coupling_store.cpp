@@ -17,7 +17,7 @@ constexpr std::size_t kBlockBytes = std::size_t(2) << 20;
 
 }  // namespace
 
-void CouplingStore::FreeBlock::operator()(double* block) const {
+void CouplingStore::FreeBlock::operator()(float* block) const {
   std::free(block);
 }
 
@@ -26,7 +26,7 @@ CouplingStore::CouplingStore(int functions) : functions_(functions) {
   for (int columns = 1; columns <= functions; ++columns) {
     Width& width = widths_[std::size_t(columns - 1)];
     width.slotSize = std::size_t(functions) * std::size_t(columns);
-    width.slotsPerBlock = std::max<std::size_t>(1, kBlockBytes / (width.slotSize * sizeof(double)));
+    width.slotsPerBlock = std::max<std::size_t>(1, kBlockBytes / (width.slotSize * sizeof(float)));
   }
 }
 
@@ -39,7 +39,7 @@ int CouplingStore::allocate(int columns) {
     return slot;
   }
   if (width.size == width.blocks.size() * width.slotsPerBlock) {
-    const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(double);
+    const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(float);
     const std::size_t allocation = (blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes;
     void* memory = std::aligned_alloc(kBlockBytes, allocation);
     if (memory == nullptr) throw std::bad_alloc();
@@ -49,7 +49,7 @@ int CouplingStore::allocate(int columns) {
     // Touch the block now, so that its page faults are paid here rather than by whichever
     // link is integrated first into it.
     std::memset(memory, 0, allocation);
-    width.blocks.emplace_back(static_cast<double*>(memory));
+    width.blocks.emplace_back(static_cast<float*>(memory));
   }
   return int(width.size++);
 }
@@ -63,7 +63,7 @@ void CouplingStore::release(int columns, int slot) {
 std::size_t CouplingStore::bytes() const {
   std::size_t total = 0;
   for (const Width& width : widths_) {
-    const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(double);
+    const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(float);
     total += width.blocks.size() * ((blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes);
   }
   return total;

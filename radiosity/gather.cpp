@@ -25,9 +25,9 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
                  const std::vector<double>& projections, Element& element) {
   const int functions = int(element.gathered.rows());
   const int orders = hierarchy.degree() + 1;
-  using Matrix = Eigen::Matrix<double, F, F>;
+  using Matrix = Eigen::Matrix<float, F, F>;
   using Block = Eigen::Matrix<double, F, 3>;
-  using Columns = Eigen::Matrix<double, F, Eigen::Dynamic>;
+  using Columns = Eigen::Matrix<float, F, Eigen::Dynamic>;
   using Projection = Eigen::Matrix<double, Eigen::Dynamic, 3>;
   Block sum = Block::Zero(functions, 3);
   const std::vector<int>& indices = element.links;
@@ -41,16 +41,17 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
         const char* start =
             reinterpret_cast<const char*>(couplings.data(keptColumns(ahead), ahead.coupling.slot));
         const std::size_t bytes =
-            std::size_t(functions) * std::size_t(keptColumns(ahead)) * sizeof(double);
+            std::size_t(functions) * std::size_t(keptColumns(ahead)) * sizeof(float);
         for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
       }
     }
     const SolverLink& link = links[std::size_t(indices[k])];
     if (!link.coupling.computed) continue;  // its source had no radiosity yet
-    const double* coupling = couplings.data(keptColumns(link), link.coupling.slot);
+    const float* coupling = couplings.data(keptColumns(link), link.coupling.slot);
     const int pu = link.coupling.gatherPoints[0], pv = link.coupling.gatherPoints[1];
     if (pu == orders && pv == orders) {
       sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)
+                           .template cast<double>()
                            .lazyProduct(Eigen::Map<const Block>(
                                hierarchy[link.source].radiosity.data(), functions, 3));
     } else {
@@ -58,6 +59,7 @@ void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& coup
           offsets[std::size_t(link.source) * std::size_t(functions) +
                   std::size_t((pu - 1) * orders + pv - 1)];
       sum.noalias() += Eigen::Map<const Columns>(coupling, functions, pu * pv)
+                           .template cast<double>()
                            .lazyProduct(Eigen::Map<const Projection>(
                                projections.data() + offset, pu * pv, 3));
     }

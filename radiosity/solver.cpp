@@ -106,8 +106,9 @@ void Solver::computeCouplings() {
     } else if (rule[2] < n || rule[3] < n) {
       impl_->projection.dropOrders(std::min(rule[2], n), std::min(rule[3], n), whole.data());
     }
-    std::memcpy(impl_->couplings.data(keptColumns(link), link.coupling.slot), whole.data(),
-                sizeof(double) * std::size_t(functions) * std::size_t(keptColumns(link)));
+    const Eigen::Index count = Eigen::Index(functions) * keptColumns(link);
+    Eigen::Map<Eigen::VectorXf>(impl_->couplings.data(keptColumns(link), link.coupling.slot), count) =
+        Eigen::Map<const Eigen::VectorXd>(whole.data(), count).cast<float>();
     link.coupling.kernelEvaluations = counts.kernelEvaluations;
     link.coupling.rule = rule;
     link.coupling.computed = true;

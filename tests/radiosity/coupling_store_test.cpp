@@ -21,26 +21,26 @@ TEST(CouplingStore, SlotsKeepTheirValuesAndAddressesAsTheStoreGrows) {
       std::vector<int> slots;
       for (int k = 0; k < 3; ++k) slots.push_back(store.allocate(columns));
       EXPECT_EQ(store.slots(columns), 3u);
-      for (std::size_t v = 0; v < values; ++v) EXPECT_EQ(store.data(columns, slots[2])[v], 0.0);
+      for (std::size_t v = 0; v < values; ++v) EXPECT_EQ(store.data(columns, slots[2])[v], 0.0f);
       for (std::size_t v = 0; v < values; ++v) store.data(columns, slots[1])[v] = 1.5;
-      const double* first = store.data(columns, slots[1]);
+      const float* first = store.data(columns, slots[1]);
       // Past three blocks, so that blocks are added.
-      const std::size_t count = 3 * (kBlockBytes / (sizeof(double) * values)) + 5;
+      const std::size_t count = 3 * (kBlockBytes / (sizeof(float) * values)) + 5;
       while (slots.size() < count) slots.push_back(store.allocate(columns));
       EXPECT_EQ(store.slots(columns), count);
       for (std::size_t k = 0; k < count; k += 97) {
-        store.data(columns, slots[k])[values - 1] = double(k);
+        store.data(columns, slots[k])[values - 1] = float(k);
       }
       EXPECT_EQ(store.data(columns, slots[1]), first);
-      EXPECT_EQ(store.data(columns, slots[1])[0], 1.5);
+      EXPECT_EQ(store.data(columns, slots[1])[0], 1.5f);
       for (std::size_t k = 97; k < count; k += 97) {
-        EXPECT_EQ(store.data(columns, slots[k])[values - 1], double(k)) << k;
+        EXPECT_EQ(store.data(columns, slots[k])[values - 1], float(k)) << k;
       }
       // Distinct slots do not overlap: neighbours are exactly one slot apart or in other
       // blocks.
       for (std::size_t k = 1; k < count; ++k) {
-        const double* a = store.data(columns, slots[k - 1]);
-        const double* b = store.data(columns, slots[k]);
+        const float* a = store.data(columns, slots[k - 1]);
+        const float* b = store.data(columns, slots[k]);
         EXPECT_TRUE(b >= a + values || a >= b + values) << k;
       }
     }
@@ -62,8 +62,8 @@ TEST(CouplingStore, ReleasedSlotsAreReusedByTheirOwnWidthOnly) {
 }
 
 TEST(CouplingStore, MemoryFollowsTheWidthsInUse) {
-  // 10,000 one-column slots of a cubic basis take 16 x 8 bytes each: one 2 MiB block; as
-  // many full ones (2 KiB each) take 10 blocks.
+  // 10,000 one-column slots of a cubic basis take 16 x 4 bytes each (single precision): one
+  // 2 MiB block; as many full ones (1 KiB each, 2,048 to a block) take 5 blocks.
   CouplingStore narrow(16), full(16);
   EXPECT_EQ(narrow.bytes(), 0u);
   for (int k = 0; k < 10000; ++k) {
@@ -71,7 +71,7 @@ TEST(CouplingStore, MemoryFollowsTheWidthsInUse) {
     full.allocate(16);
   }
   EXPECT_EQ(narrow.bytes(), kBlockBytes);
-  EXPECT_EQ(full.bytes(), 10 * kBlockBytes);
+  EXPECT_EQ(full.bytes(), 5 * kBlockBytes);
 }
 
 }  // namespace
