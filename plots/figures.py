@@ -42,10 +42,15 @@ def load(path):
 
 
 def save(figure, plots, stem):
+    # The tight bounding box is measured once, in the PNG's resolution (what
+    # bbox_inches="tight" measures for each file, with a draw of its own), and used for both.
+    figure.set_dpi(150)
+    figure.canvas.draw()
+    bbox = figure.get_tightbbox(figure.canvas.get_renderer()).padded(matplotlib.rcParams["savefig.pad_inches"])
     for extension in ("png", "svg"):
         target = os.path.join(plots, f"{stem}.{extension}")
         temporary = target + ".tmp." + extension
-        figure.savefig(temporary, dpi=150, metadata=METADATA[extension], bbox_inches="tight")
+        figure.savefig(temporary, dpi=150, metadata=METADATA[extension], bbox_inches=bbox)
         os.replace(temporary, target)
 
 
@@ -84,7 +89,7 @@ def figure1(table, plots, stem):
     axes.set_xticks(positions, [f"{n}\n({r['samples']} samples)" for n, r in zip(names, rules)], fontsize=7)
     axes.set_ylabel("mean relative error of K[0][0]" + (" (against gold)" if gold else ""))
     source = scene_source(table)
-    axes.set_title(f"Figure 1: constant bases, {table['links']} partially visible links{source}", fontsize=10)
+    axes.set_title(f"Figure 1: constant bases, {table['links']} partially visible links{source}", fontsize=10, y=1.0)
     axes.text(0.0, -0.22, reference_note(table), transform=axes.transAxes, fontsize=7)
     axes.grid(axis="y", which="both", alpha=0.3)
     save(figure, plots, stem)
@@ -127,7 +132,7 @@ def figure2(table, plots, stem):
     axes.set_ylabel("mean L1 error bound per unit area" + (" (against gold)" if gold else ""))
     counts = ", ".join(f"{c} ({classes[c]['links']} links)" for c in order)
     axes.set_title(f"Figure 2: quadratic bases; left bars {order[0]}, right (hatched) {order[-1]}; {counts}"
-                   f"{scene_source(table)}", fontsize=9)
+                   f"{scene_source(table)}", fontsize=9, y=1.0)
     axes.legend(fontsize=6, loc="upper left", ncol=3, title="source function", title_fontsize=7)
     floor = ", ".join(f"{c} {classes[c]['reference']['l1_standard_error']['total']:.2g}" for c in order
                       if "l1_standard_error" in classes[c]["reference"])
@@ -145,7 +150,7 @@ def figure2(table, plots, stem):
     scale_free.set_yscale("log")
     scale_free.set_xticks(np.arange(len(names)), names, fontsize=7, rotation=45, ha="right")
     scale_free.set_ylabel("mean relative Frobenius error of K" + (" (against gold)" if gold else ""), fontsize=8)
-    scale_free.set_title("scale-free: ||K~ - K||_F / ||K||_F", fontsize=9)
+    scale_free.set_title("scale-free: ||K~ - K||_F / ||K||_F", fontsize=9, y=1.0)
     scale_free.legend(fontsize=7)
     scale_free.grid(axis="y", which="both", alpha=0.3)
     save(figure, plots, stem)
@@ -194,7 +199,7 @@ def breakdown_figure(table, plots, stem):
         axes.set_yscale("log")
         axes.set_xticks(np.arange(len(entries)),
                         [f"{label}\n({entry['links']} links)" for label, entry in entries], fontsize=7)
-        axes.set_title(title, fontsize=9)
+        axes.set_title(title, fontsize=9, y=1.0)
         axes.grid(axis="y", which="both", alpha=0.3)
     axes_list[0][0].set_ylabel(f"mean {metric.replace('_', ' ')} / FullGauss's (95% interval)", fontsize=8)
     axes_list[0][-1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))

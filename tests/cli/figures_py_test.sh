@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# plots/figures.py on the committed results: the committed plots/*.svg are what it draws from
+# results/ (so they are never stale), `--only NAME` draws that table's figures alone, and an
+# unknown table is refused.
+# Usage: figures_py_test.sh SOURCE_DIR
+set -u
+root="$1"
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+failures=0
+fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+
+/usr/bin/python3 "$root/plots/figures.py" --results "$root/results" --plots "$scratch/all" ||
+  fail "figures.py exited with $?"
+for stem in fig1 fig2 fig1-scene fig2-scene; do
+  for kind in "" -breakdown; do
+    for extension in png svg; do
+      [ -s "$scratch/all/$stem$kind.$extension" ] || fail "$stem$kind.$extension not drawn"
+    done
+    cmp -s "$scratch/all/$stem$kind.svg" "$root/plots/$stem$kind.svg" ||
+      fail "plots/$stem$kind.svg differs from what figures.py draws from results/"
+  done
+done
+[ -z "$(ls "$scratch/all" | grep -v '\.png$\|\.svg$')" ] || fail "temporary files left: $(ls "$scratch/all")"
+
+/usr/bin/python3 "$root/plots/figures.py" --results "$root/results" --plots "$scratch/one" --only fig2 ||
+  fail "figures.py --only fig2 exited with $?"
+[ "$(ls "$scratch/one" | tr '\n' ' ')" = "fig2-breakdown.png fig2-breakdown.svg fig2.png fig2.svg " ] ||
+  fail "--only fig2 drew: $(ls "$scratch/one" | tr '\n' ' ')"
+cmp -s "$scratch/one/fig2.svg" "$scratch/all/fig2.svg" || fail "--only fig2 drew another fig2.svg"
+
+/usr/bin/python3 "$root/plots/figures.py" --results "$root/results" --plots "$scratch/bad" --only fig3 \
+  2>"$scratch/bad.err"
+status=$?
+[ "$status" -eq 2 ] || fail "--only fig3: exit status $status, expected 2"
+grep -q "fig3" "$scratch/bad.err" || fail "--only fig3: the error does not name it: $(cat "$scratch/bad.err")"
+
+[ "$failures" -eq 0 ] && echo "figures.py: all checks passed"
+exit $((failures > 0))
