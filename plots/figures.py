@@ -41,6 +41,8 @@ def load(path):
         sys.exit(f"figures.py: cannot read {path}: {error}")
 
 
+# Titles of log-scale axes are set at y=1.0: matplotlib then does not measure every tick
+# label to place them (the same place, since nothing is drawn above those axes).
 def save(figure, plots, stem):
     # The tight bounding box is measured once, in the PNG's resolution (what
     # bbox_inches="tight" measures for each file, with a draw of its own), and used for both.
@@ -132,7 +134,7 @@ def figure2(table, plots, stem):
     axes.set_ylabel("mean L1 error bound per unit area" + (" (against gold)" if gold else ""))
     counts = ", ".join(f"{c} ({classes[c]['links']} links)" for c in order)
     axes.set_title(f"Figure 2: quadratic bases; left bars {order[0]}, right (hatched) {order[-1]}; {counts}"
-                   f"{scene_source(table)}", fontsize=9, y=1.0)
+                   f"{scene_source(table)}", fontsize=9)  # linear axis: placed above its offset text
     axes.legend(fontsize=6, loc="upper left", ncol=3, title="source function", title_fontsize=7)
     floor = ", ".join(f"{c} {classes[c]['reference']['l1_standard_error']['total']:.2g}" for c in order
                       if "l1_standard_error" in classes[c]["reference"])

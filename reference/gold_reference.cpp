@@ -132,10 +132,12 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
   // converges algebraically: up to 48^4 points it does not reach the tolerance, and about 8
   // million evaluations, each with its occlusion ray, come before the exact gold that such a
   // link gets anyway. Those links go there at once.
-  const bool exactAvailable = options.method == GoldMethod::exact &&
-                              ExactVisibility(link).candidateCount() <= options.maxExactOccluders;
-  const bool unoccluded = !(exactAvailable && kernelNotSmooth(link)) &&
-                          gaussGold(link, degree, options.tolerance, gold);
+  const auto exactFits = [&] {
+    return ExactVisibility(link).candidateCount() <= options.maxExactOccluders;
+  };
+  const bool exactMethod = options.method == GoldMethod::exact;
+  const bool direct = exactMethod && kernelNotSmooth(link) && exactFits();
+  const bool unoccluded = !direct && gaussGold(link, degree, options.tolerance, gold);
   if (unoccluded && gold.converged) {
     gold.method = "gauss product";
     LambertCheck check = lambertColumn(link, degree, options.tolerance);
@@ -143,7 +145,7 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
     gold.lambert = std::move(check);
     return gold;
   }
-  if (exactAvailable) {
+  if (direct || (exactMethod && exactFits())) {
     ExactGoldOptions exactOptions;
     exactOptions.tolerance = options.exactTolerance;
     exactOptions.maxEvaluations = options.maxEvaluations;

@@ -23,6 +23,8 @@
 #define RADQUAD_DATA_FROM_BIN "../share/radquad"
 #endif
 
+extern char** environ;  // the process's environment, handed to the plot scripts
+
 namespace radquad {
 namespace {
 
@@ -137,17 +139,22 @@ void BackgroundPlots::start(const std::string& stem) {
 }
 
 void BackgroundPlots::finish() {
-  std::string failed;
+  std::string failed, why;
   for (const Job& job : running_) {
     int status = 0;
-    while (waitpid(job.pid, &status, 0) < 0 && errno == EINTR) {
+    pid_t waited = -1;
+    while ((waited = waitpid(job.pid, &status, 0)) < 0 && errno == EINTR) {
     }
-    if (failed.empty() && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) failed = job.stem;
+    const bool succeeded = waited == job.pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (failed.empty() && !succeeded) {
+      failed = job.stem;
+      if (waited != job.pid) why = std::string(": cannot wait for it: ") + std::strerror(errno);
+    }
   }
   running_.clear();
   if (!failed.empty()) {
     throw InputError("plots/" + script_ + " failed on " + (results_ / (failed + ".json")).string() +
-                     " (is matplotlib installed for " + python_ + "?)");
+                     (why.empty() ? " (is matplotlib installed for " + python_ + "?)" : why));
   }
 }
 

@@ -10,6 +10,16 @@ trap 'rm -rf "$scratch"' EXIT
 failures=0
 fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
 
+# The committed SVGs are compared byte for byte only with the matplotlib that drew them (its
+# version is in each SVG): another version lays text out differently.
+drawn_with=$(sed -n 's|.*<dc:title>Matplotlib v\([^,]*\),.*|\1|p' "$root/plots/fig1.svg" | head -1)
+installed=$(/usr/bin/python3 -c 'import matplotlib; print(matplotlib.__version__)')
+same_matplotlib=no
+if [ -n "$drawn_with" ] && [ "$drawn_with" = "$installed" ]; then
+  same_matplotlib=yes
+else
+  echo "note: plots/*.svg were drawn with matplotlib '$drawn_with', this is '$installed': not compared"
+fi
 /usr/bin/python3 "$root/plots/figures.py" --results "$root/results" --plots "$scratch/all" ||
   fail "figures.py exited with $?"
 for stem in fig1 fig2 fig1-scene fig2-scene; do
@@ -17,11 +27,14 @@ for stem in fig1 fig2 fig1-scene fig2-scene; do
     for extension in png svg; do
       [ -s "$scratch/all/$stem$kind.$extension" ] || fail "$stem$kind.$extension not drawn"
     done
-    cmp -s "$scratch/all/$stem$kind.svg" "$root/plots/$stem$kind.svg" ||
-      fail "plots/$stem$kind.svg differs from what figures.py draws from results/"
+    if [ "$same_matplotlib" = yes ]; then
+      cmp -s "$scratch/all/$stem$kind.svg" "$root/plots/$stem$kind.svg" ||
+        fail "plots/$stem$kind.svg differs from what figures.py draws from results/"
+    fi
   done
 done
-[ -z "$(ls "$scratch/all" | grep -v '\.png$\|\.svg$')" ] || fail "temporary files left: $(ls "$scratch/all")"
+[ "$(ls "$scratch/all" | wc -l)" -eq 16 ] || fail "expected the 16 files alone: $(ls "$scratch/all" | tr '\n' ' ')"
+! ls "$scratch/all" | grep -q '\.tmp\.' || fail "temporary files left: $(ls "$scratch/all" | tr '\n' ' ')"
 
 /usr/bin/python3 "$root/plots/figures.py" --results "$root/results" --plots "$scratch/one" --only fig2 ||
   fail "figures.py --only fig2 exited with $?"

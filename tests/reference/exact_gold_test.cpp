@@ -10,6 +10,7 @@
 
 #include "kernel/input_error.h"
 #include "kernel/occluder_scene.h"
+#include "kernel/patch_intersection.h"
 #include "quadrature/gauss_legendre.h"
 #include "reference/exact_gold.h"
 #include "reference/exact_visibility.h"
@@ -229,6 +230,22 @@ TEST(GoldReference, LinksWhoseKernelIsNotSmoothGoStraightToTheExactGold) {
   EXPECT_EQ(cut.kernelEvaluations, 0u);
   EXPECT_TRUE(cut.converged);
   EXPECT_NEAR(cut.formFactor, expected, 2e-7 * expected);
+  // Apart from the floor (y = 2) and crossing its plane: not touching, cut by the receiver's
+  // plane; the floor sees the upper half alone (the contour formula's value for it). With
+  // the roles swapped the receiver crosses the source's plane, and by reciprocity its form
+  // factor is the floor's times A_floor / A_wall = 1/2.
+  const Patch apart = Patch::make({0, 2, -1}, {1, 0, 0}, {0, 0, 2}, "apart");
+  ASSERT_GT(patchDistance(floor, apart), 0.5);
+  const GoldReference cutApart = goldReference(Link{floor, apart, nullptr}, 0, 0);
+  EXPECT_EQ(cutApart.method, "exact visibility");
+  EXPECT_EQ(cutApart.kernelEvaluations, 0u);
+  const Patch upperHalf = Patch::make({0, 2, 0}, {1, 0, 0}, {0, 0, 1}, "upper half");
+  const double seen = analytic::polygonToPolygonFormFactor(cornersOf(floor), cornersOf(upperHalf));
+  EXPECT_NEAR(cutApart.formFactor, seen, 1e-7 * seen);
+  const GoldReference crossing = goldReference(Link{apart, floor, nullptr}, 0, 0);
+  EXPECT_EQ(crossing.method, "exact visibility");
+  EXPECT_EQ(crossing.kernelEvaluations, 0u);
+  EXPECT_NEAR(crossing.formFactor, 0.5 * seen, 1e-7 * seen);
   // A smooth link keeps the Gauss sequence.
   const Patch facing = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "facing");
   EXPECT_EQ(goldReference(Link{floor, facing, nullptr}, 0, 0).method, "gauss product");
