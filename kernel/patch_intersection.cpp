@@ -154,6 +154,21 @@ double pointToPatch(const Eigen::Vector3d& point, const Patch& patch) {
 
 }  // namespace
 
+bool straddlesPlane(const Patch& plane, const Patch& element) {
+  const double margin = 1e-9 * std::sqrt(std::max(plane.area, element.area));
+  bool front = false, back = false;
+  for (const Eigen::Vector3d& point : element.corners()) {
+    const double height = plane.normal.dot(point - plane.origin);
+    front = front || height > margin;
+    back = back || height < -margin;
+  }
+  return front && back;
+}
+
+bool cutByTangentPlane(const Patch& receiver, const Patch& source) {
+  return straddlesPlane(receiver, source) || straddlesPlane(source, receiver);
+}
+
 double patchDistance(const Patch& a, const Patch& b) {
   if (patchesInterpenetrate(a, b)) return 0.0;
   const Corners ca = a.corners(), cb = b.corners();

@@ -27,6 +27,15 @@ std::optional<std::string> patchesInterpenetrate(const Patch& a, const Patch& b)
 // Touching (a vertex or an edge on the plane) is not crossing.
 bool polygonCrossesPatch(const std::vector<Eigen::Vector3d>& polygon, const Patch& patch);
 
+// Whether `element` has corners strictly on both sides of `plane`'s plane (by more than 1e-9
+// of the square root of the larger area).
+bool straddlesPlane(const Patch& plane, const Patch& element);
+// Whether either patch has corners strictly on both sides of the other's plane: the clamped
+// cosine then cuts the pair, and the kernel is discontinuous inside the link (a block face
+// and the floor it stands on, a wall and a light whose centre lies behind it). Estimates
+// from the patches' centres can see nothing there, and product rules converge slowly.
+bool cutByTangentPlane(const Patch& receiver, const Patch& source);
+
 // The Euclidean distance between two parallelograms (0 when they touch or cross): the least
 // of the distances from each one's corners to the other and between their edges.
 double patchDistance(const Patch& a, const Patch& b);

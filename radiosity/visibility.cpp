@@ -41,21 +41,6 @@ bool mayExchange(const Patch& receiver, const Patch& source) {
   return sourceInFront && receiverInFront;
 }
 
-bool straddlesPlane(const Patch& plane, const Patch& element) {
-  const double margin = 1e-9 * std::sqrt(std::max(plane.area, element.area));
-  bool front = false, back = false;
-  for (const Vec& point : element.corners()) {
-    const double height = plane.normal.dot(point - plane.origin);
-    front = front || height > margin;
-    back = back || height < -margin;
-  }
-  return front && back;
-}
-
-bool cutByTangentPlane(const Patch& receiver, const Patch& source) {
-  return straddlesPlane(receiver, source) || straddlesPlane(source, receiver);
-}
-
 bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& source) {
   const std::array<Vec, 4> rc = receiver.corners(), sc = source.corners();
   const double size = std::sqrt(std::max({occluder.area, receiver.area, source.area}));

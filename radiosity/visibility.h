@@ -20,6 +20,7 @@
 
 #include "kernel/occluder_scene.h"
 #include "kernel/patch.h"
+#include "kernel/patch_intersection.h"
 #include "radiosity/scene.h"
 
 namespace radquad {
@@ -32,13 +33,7 @@ const char* linkClassName(LinkClass visibility);
 // front of the receiver's plane and some receiver point strictly in front of the source's.
 bool mayExchange(const Patch& receiver, const Patch& source);
 
-// Whether either element has corners strictly on both sides of the other's plane: the
-// clamped cosine then cuts the pair, and the kernel is discontinuous inside the link (a
-// block face and the floor it stands on, a wall and a light whose centre lies behind it).
-// Estimates from the elements' centres can see nothing there.
-bool cutByTangentPlane(const Patch& receiver, const Patch& source);
-// Whether `element` has corners strictly on both sides of `plane`'s plane.
-bool straddlesPlane(const Patch& plane, const Patch& element);
+// cutByTangentPlane and straddlesPlane (links cut by a tangent plane): kernel/patch_intersection.h.
 
 // Whether a partially visible link's visibility changes across each element: rays from the
 // centres of the receiver's four quadrants to the source's centre (receiver), and from the

@@ -52,28 +52,14 @@ bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& go
   return true;
 }
 
-// Whether either patch has corners strictly on both sides of the other's plane (the
-// clamped cosine cuts it), by more than 1e-9 of the link's size.
-bool cutByPlane(const Patch& patch, const Patch& plane, double tolerance) {
-  bool below = false, above = false;
-  for (const Eigen::Vector3d& corner : patch.corners()) {
-    const double height = plane.normal.dot(corner - plane.origin);
-    below = below || height < -tolerance;
-    above = above || height > tolerance;
-  }
-  return below && above;
-}
-
 // The kernel of a link is not smooth over it, occluders aside, when the patches touch (a
 // wall on a floor: singular along the contact) or one crosses the other's plane (the
 // clamped cosine is discontinuous there).
 bool kernelNotSmooth(const Link& link) {
   const double size = std::max({link.receiver.edgeU.norm(), link.receiver.edgeV.norm(),
                                 link.source.edgeU.norm(), link.source.edgeV.norm()});
-  const double tolerance = 1e-9 * size;
-  return patchDistance(link.receiver, link.source) <= tolerance ||
-         cutByPlane(link.source, link.receiver, tolerance) ||
-         cutByPlane(link.receiver, link.source, tolerance);
+  return patchDistance(link.receiver, link.source) <= 1e-9 * size ||
+         cutByTangentPlane(link.receiver, link.source);
 }
 
 Eigen::VectorXd lambertColumnAtOrder(const Link& link, int degree, int n) {
