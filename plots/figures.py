@@ -41,8 +41,6 @@ def load(path):
         sys.exit(f"figures.py: cannot read {path}: {error}")
 
 
-# Titles of log-scale axes are set at y=1.0: matplotlib then does not measure every tick
-# label to place them (the same place, since nothing is drawn above those axes).
 def save(figure, plots, stem):
     # The tight bounding box is measured once, in the PNG's resolution (what
     # bbox_inches="tight" measures for each file, with a draw of its own), and used for both.
@@ -73,6 +71,8 @@ def scene_source(table):
     return f" of {'scenes' if len(scenes) > 1 else 'scene'} {', '.join(scenes)} (solver degree {links['degree']})"
 
 
+# Titles of log-scale axes are set at y=1.0: matplotlib then does not measure every tick
+# label to place them (the same place, since nothing is drawn above those axes).
 def figure1(table, plots, stem):
     rules = list(table["rules"])
     gold = "relative_error_vs_gold" in rules[0]

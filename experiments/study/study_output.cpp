@@ -83,16 +83,27 @@ void checkPlotInterpreter(const std::string& python, const std::string& option) 
   }
 }
 
+namespace {
+
+// Waits for the child `pid` (again after an interrupted wait). Returns "" when it exited with
+// status 0, else why not.
+std::string waitForChild(int pid) {
+  int status = 0;
+  pid_t waited = -1;
+  while ((waited = waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
+  }
+  if (waited != pid) return std::string("cannot wait for it: ") + std::strerror(errno);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : "failed";
+}
+
+}  // namespace
+
 void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet) {
-  const std::string command =
-      shellQuoted(python) + " " + shellQuoted((dataRoot() / "plots" / script).string()) +
-      " --results " + shellQuoted(results.string()) + " --plots " + shellQuoted(plots.string());
-  if (!quiet) std::cerr << "radquad " << commandName << ": " << command << "\n";
-  if (std::system(command.c_str()) != 0) {
-    throw InputError("plots/" + script + " failed (is matplotlib installed for " + python + "?)");
-  }
+  BackgroundPlots plotting(python, script, results, plots, commandName, quiet);
+  plotting.start({});
+  plotting.finish();
 }
 
 BackgroundPlots::BackgroundPlots(std::string python, std::string script,
@@ -106,25 +117,20 @@ BackgroundPlots::BackgroundPlots(std::string python, std::string script,
       quiet_(quiet) {}
 
 BackgroundPlots::~BackgroundPlots() {
-  for (const Job& job : running_) {
-    int status = 0;
-    while (waitpid(job.pid, &status, 0) < 0 && errno == EINTR) {
-    }
-  }
+  for (const Job& job : running_) waitForChild(job.pid);
 }
 
 void BackgroundPlots::start(const std::string& stem) {
-  const std::vector<std::string> words = {python_,          (dataRoot() / "plots" / script_).string(),
-                                          "--results",      results_.string(),
-                                          "--plots",        plots_.string(),
-                                          "--only",         stem};
+  std::vector<std::string> words = {python_, (dataRoot() / "plots" / script_).string(),
+                                    "--results", results_.string(), "--plots", plots_.string()};
+  if (!stem.empty()) words.insert(words.end(), {"--only", stem});
   if (!quiet_) {
     std::string echoed;
     for (const std::string& word : words) {
       if (!echoed.empty()) echoed += ' ';
       echoed += shellQuoted(word);
     }
-    std::cerr << "radquad " << commandName_ << ": " << echoed << " &\n";
+    std::cerr << "radquad " << commandName_ << ": " << echoed << "\n";
   }
   std::vector<char*> argv;
   for (const std::string& word : words) argv.push_back(const_cast<char*>(word.c_str()));
@@ -141,21 +147,19 @@ void BackgroundPlots::start(const std::string& stem) {
 void BackgroundPlots::finish() {
   std::string failed, why;
   for (const Job& job : running_) {
-    int status = 0;
-    pid_t waited = -1;
-    while ((waited = waitpid(job.pid, &status, 0)) < 0 && errno == EINTR) {
-    }
-    const bool succeeded = waited == job.pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    if (failed.empty() && !succeeded) {
+    const std::string outcome = waitForChild(job.pid);
+    if (why.empty() && !outcome.empty()) {
       failed = job.stem;
-      if (waited != job.pid) why = std::string(": cannot wait for it: ") + std::strerror(errno);
+      why = outcome;
     }
   }
   running_.clear();
-  if (!failed.empty()) {
-    throw InputError("plots/" + script_ + " failed on " + (results_ / (failed + ".json")).string() +
-                     (why.empty() ? " (is matplotlib installed for " + python_ + "?)" : why));
-  }
+  if (why.empty()) return;
+  const std::string what =
+      failed.empty() ? "" : " on " + (results_ / (failed + ".json")).string();
+  throw InputError("plots/" + script_ + " failed" + what +
+                   (why == "failed" ? " (is matplotlib installed for " + python_ + "?)"
+                                    : ": " + why));
 }
 
 std::filesystem::path runRecordPath(const std::filesystem::path& result) {

@@ -32,16 +32,16 @@ std::string shellQuoted(const std::string& text);
 // InputError naming the option otherwise.
 void checkPlotInterpreter(const std::string& python, const std::string& option);
 
-// Runs `python plots/SCRIPT --results RESULTS --plots PLOTS` from the source tree, echoing
-// the command on stderr as "radquad COMMAND: ..." unless quiet. InputError when it fails.
+// Runs `python plots/SCRIPT --results RESULTS --plots PLOTS` from the source tree and waits
+// for it (BackgroundPlots below, with one script over every table). InputError when it fails.
 void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet);
 
 // Plot scripts run in the background, beside the computation that follows: start(stem) runs
-// `python plots/SCRIPT --results RESULTS --plots PLOTS --only STEM` without waiting (echoed on
-// stderr as "radquad COMMAND: ..." unless quiet); finish() waits for every one started and
-// throws InputError naming the first that failed. The destructor waits for those still
+// `python plots/SCRIPT --results RESULTS --plots PLOTS --only STEM` (without `--only` when
+// stem is empty) without waiting, echoed on stderr as "radquad COMMAND: ..." unless quiet;
+// finish() waits for every one started and throws InputError naming the first that failed. The destructor waits for those still
 // running (their outputs are written atomically by the script), without throwing.
 class BackgroundPlots {
  public:
