@@ -336,11 +336,14 @@ int OccluderScene::closestHit(const Eigen::Vector3d& origin, const Eigen::Vector
 }
 
 bool OccluderScene::segmentVisible(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
-  SegmentBatch batch;
+  // One packet per thread, reused: the solver asks this of millions of links (which element
+  // of a partial link to split), and a fresh batch per call cost an aligned allocation and
+  // its page faults each time.
+  thread_local SegmentBatch batch;
+  batch.clear();
   batch.push(from, to - from);
-  std::uint8_t visible = 0;
-  testSegments(batch, &visible);
-  return visible != 0;
+  trace(batch);
+  return batch.visible(0);
 }
 
 }  // namespace radquad

@@ -1,7 +1,6 @@
 #include "radiosity/coupling_store.h"
 #include "kernel/input_error.h"
-
-#include <sys/mman.h>
+#include "radiosity/huge_pages.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -9,16 +8,9 @@
 #include <new>
 
 namespace radquad {
-namespace {
-
-// One block is one 2 MiB huge page where the kernel grants them (madvise below): the first
-// touch of a block then costs one page fault instead of 512.
-constexpr std::size_t kBlockBytes = std::size_t(2) << 20;
-
-}  // namespace
 
 void CouplingStore::FreeBlock::operator()(float* block) const {
-  std::free(block);
+  freeHugePages(block);
 }
 
 CouplingStore::CouplingStore(int functions) : functions_(functions) {
@@ -26,7 +18,7 @@ CouplingStore::CouplingStore(int functions) : functions_(functions) {
   for (int columns = 1; columns <= functions; ++columns) {
     Width& width = widths_[std::size_t(columns - 1)];
     width.slotSize = std::size_t(functions) * std::size_t(columns);
-    width.slotsPerBlock = std::max<std::size_t>(1, kBlockBytes / (width.slotSize * sizeof(float)));
+    width.slotsPerBlock = std::max<std::size_t>(1, kHugePageBytes / (width.slotSize * sizeof(float)));
   }
 }
 
@@ -40,15 +32,10 @@ int CouplingStore::allocate(int columns) {
   }
   if (width.size == width.blocks.size() * width.slotsPerBlock) {
     const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(float);
-    const std::size_t allocation = (blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes;
-    void* memory = std::aligned_alloc(kBlockBytes, allocation);
-    if (memory == nullptr) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-    madvise(memory, allocation, MADV_HUGEPAGE);  // advisory: ignored where unsupported
-#endif
+    void* memory = allocateHugePages(blockBytes);
     // Touch the block now, so that its page faults are paid here rather than by whichever
     // link is integrated first into it.
-    std::memset(memory, 0, allocation);
+    std::memset(memory, 0, hugePageRounded(blockBytes));
     width.blocks.emplace_back(static_cast<float*>(memory));
   }
   return int(width.size++);
@@ -64,7 +51,7 @@ std::size_t CouplingStore::bytes() const {
   std::size_t total = 0;
   for (const Width& width : widths_) {
     const std::size_t blockBytes = width.slotsPerBlock * width.slotSize * sizeof(float);
-    total += width.blocks.size() * ((blockBytes + kBlockBytes - 1) / kBlockBytes * kBlockBytes);
+    total += width.blocks.size() * hugePageRounded(blockBytes);
   }
   return total;
 }

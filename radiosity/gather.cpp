@@ -20,7 +20,7 @@ namespace {
 // multiplies them (F x P) by the source's projection Bhat (P x 3, source_projection.h), which
 // reads and multiplies P / F of the coupling.
 template <int F>
-void gatherLinks(const std::vector<SolverLink>& links, const CouplingStore& couplings,
+void gatherLinks(const LinkArray& links, const CouplingStore& couplings,
                  const Hierarchy& hierarchy, const std::vector<std::ptrdiff_t>& offsets,
                  const std::vector<double>& projections, Element& element) {
   const int functions = int(element.gathered.rows());

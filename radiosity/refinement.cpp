@@ -47,7 +47,7 @@ void Solver::createInitialLinks() {
   }
   // Classification casts rays for every link: in chunks, with progress between them.
   constexpr std::size_t kChunk = std::size_t(1) << 16;
-  std::vector<int> created;
+  HugePageVector<int> created;
   for (std::size_t begin = 0; begin < links_.size(); begin += kChunk) {
     const std::size_t end = std::min(links_.size(), begin + kChunk);
     created.resize(end - begin);
@@ -60,8 +60,8 @@ void Solver::createInitialLinks() {
 
 // Classifies the links in `created` whose parent was partial (or that are top-level):
 // children of an unoccluded link are unoccluded (a sub-shaft lies inside the shaft).
-void Solver::classifyLinks(std::vector<int>& created) {
-  std::vector<std::uint64_t> rays(created.size(), 0);
+void Solver::classifyLinks(HugePageVector<int>& created) {
+  HugePageVector<std::uint64_t> rays(created.size(), 0);
   tbb::parallel_for(std::size_t(0), created.size(), [&](std::size_t k) {
     SolverLink& link = links_[std::size_t(created[k])];
     if (link.visibility != LinkClass::kPartial) return;
@@ -152,7 +152,7 @@ bool Solver::refinementPass() {
     return link.active ||
            (link.visibility == LinkClass::kOccluded && !link.occlusionProven && !link.split);
   };
-  std::vector<int> pending;
+  HugePageVector<int> pending;
   for (std::size_t k = 0; k < links_.size(); ++k) {
     if (examined(links_[k])) pending.push_back(int(k));
   }
@@ -172,12 +172,12 @@ bool Solver::refinementPass() {
     if (memoryExceeded("refinement")) break;
     // Which links split, and which of their elements (a function of each link alone, so the
     // choices are made in parallel and applied in order).
-    std::vector<int> choices(pending.size());
+    HugePageVector<int> choices(pending.size());
     tbb::parallel_for(std::size_t(0), pending.size(), [&](std::size_t k) {
       const SolverLink& link = links_[std::size_t(pending[k])];
       choices[k] = examined(link) && oracleSaysRefine(link) ? splitSide(link) : -1;
     });
-    std::vector<int> created;
+    HugePageVector<int> created;
     for (std::size_t k = 0; k < pending.size(); ++k) {
       if (choices[k] < 0) continue;
       if (hierarchy_->size() + 4 > options_.maxElements || links_.size() + 4 > options_.maxLinks) {

@@ -43,8 +43,8 @@ void Solver::computeCouplings() {
   const auto start = std::chrono::steady_clock::now();
   updateSourcePoints();
   const std::uint64_t checksBefore = statistics_.ruleCheckEvaluations;
-  std::vector<int> todo;
-  std::vector<GaussPointCounts> rules;
+  HugePageVector<int> todo;
+  HugePageVector<GaussPointCounts> rules;
   std::vector<bool> again;
   std::vector<bool> composites;
   for (std::size_t k = 0; k < links_.size(); ++k) {
@@ -85,7 +85,7 @@ void Solver::computeCouplings() {
     if (link.coupling.slot < 0) link.coupling.slot = impl_->couplings.allocate(keptColumns(link));
   }
   const auto stored = std::chrono::steady_clock::now();
-  std::vector<std::uint64_t> rays(todo.size(), 0);
+  HugePageVector<std::uint64_t> rays(todo.size(), 0);
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t k) {
     SolverLink& link = links_[std::size_t(todo[k])];
     const GaussPointCounts& rule = rules[k];
@@ -225,7 +225,8 @@ void Solver::solve() {
       statistics_.converged = true;
       break;
     }
-    rebuildElementLinks();
+    // The elements' lists of active links change only when links are created or split.
+    if (iteration == 1 || refined) rebuildElementLinks();
     computeCouplings();
     if (memoryExceeded("the coupling integration")) {
       statistics_.failure = budgetExceeded_;

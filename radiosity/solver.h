@@ -16,6 +16,7 @@
 
 #include "quadrature/adaptive_gauss.h"
 #include "radiosity/hierarchy.h"
+#include "radiosity/huge_pages.h"
 #include "radiosity/memory_budget.h"
 #include "radiosity/scene.h"
 #include "radiosity/source_projection.h"
@@ -161,6 +162,9 @@ struct FormFactorSums {
   std::size_t violations = 0;  // elements above 1 + kFormFactorSumTolerance
 };
 
+// The solver's links: millions of them at degree 2, in huge pages (huge_pages.h).
+using LinkArray = HugePageVector<SolverLink>;
+
 inline int keptColumns(const SolverLink& link) {
   return link.coupling.gatherPoints[0] * link.coupling.gatherPoints[1];
 }
@@ -205,7 +209,7 @@ class Solver {
   void solve();
 
   const Hierarchy& hierarchy() const { return *hierarchy_; }
-  const std::vector<SolverLink>& links() const { return links_; }
+  const LinkArray& links() const { return links_; }
   const SolveStatistics& statistics() const { return statistics_; }
   const SolverOptions& options() const { return options_; }
   double minArea() const { return minArea_; }
@@ -227,7 +231,7 @@ class Solver {
   // Sets budgetExceeded_ when the resident memory exceeds the budget; returns whether it did.
   bool memoryExceeded(const char* phase);
   std::string budgetExceeded_;  // set when a budget stops the solve
-  void classifyLinks(std::vector<int>& created);
+  void classifyLinks(HugePageVector<int>& created);
   bool oracleSaysRefine(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
   AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
@@ -246,7 +250,7 @@ class Solver {
   SolverOptions options_;
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Hierarchy> hierarchy_;
-  std::vector<SolverLink> links_;
+  LinkArray links_;
   std::vector<std::array<int, 2>> sourcePoints_;  // per element, see updateSourcePoints
   // gather(): the sources' projections Bhat, at projectionOffset_[element * (d+1)^2 + shape]
   // (shape (pu - 1) * (d+1) + pv - 1; -1 where no link gathers through it).

@@ -3,15 +3,17 @@
 // follows the widths in use.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
 #include "radiosity/coupling_store.h"
+#include "radiosity/huge_pages.h"
 
 namespace radquad {
 namespace {
 
-constexpr std::size_t kBlockBytes = std::size_t(2) << 20;  // radiosity/coupling_store.cpp
+constexpr std::size_t kBlockBytes = std::size_t(2) << 20;  // a huge page, radiosity/huge_pages.h
 
 TEST(CouplingStore, SlotsKeepTheirValuesAndAddressesAsTheStoreGrows) {
   for (int functions : {1, 9, 16}) {
@@ -72,6 +74,42 @@ TEST(CouplingStore, MemoryFollowsTheWidthsInUse) {
   }
   EXPECT_EQ(narrow.bytes(), kBlockBytes);
   EXPECT_EQ(full.bytes(), 5 * kBlockBytes);
+}
+
+// The solver's link array grows through HugePageAllocator: arrays of a huge page and more sit
+// at huge-page boundaries, smaller ones are ordinary allocations, and the contents survive every
+// reallocation across the threshold (both ways, through shrink_to_fit).
+TEST(HugePageAllocator, LargeArraysAreHugePageAlignedAndGrowthKeepsTheirContents) {
+  EXPECT_EQ(hugePageRounded(1), kBlockBytes);
+  EXPECT_EQ(hugePageRounded(kBlockBytes), kBlockBytes);
+  EXPECT_EQ(hugePageRounded(kBlockBytes + 1), 2 * kBlockBytes);
+  struct Item {
+    std::uint64_t index;
+    std::vector<int> payload;  // moved, not copied, as the vector grows
+  };
+  std::vector<Item, HugePageAllocator<Item>> items;
+  const std::size_t count = 3 * kBlockBytes / sizeof(Item) + 7;
+  bool sawSmall = false, sawLarge = false;
+  for (std::size_t k = 0; k < count; ++k) {
+    items.push_back({k, std::vector<int>(1 + k % 3, int(k))});
+    const bool large = items.capacity() * sizeof(Item) >= kBlockBytes;
+    (large ? sawLarge : sawSmall) = true;
+    if (large) {
+      ASSERT_EQ(reinterpret_cast<std::uintptr_t>(items.data()) % kBlockBytes, 0u) << k;
+    }
+  }
+  EXPECT_TRUE(sawSmall);
+  EXPECT_TRUE(sawLarge);
+  items.resize(10);
+  items.shrink_to_fit();
+  EXPECT_LT(items.capacity() * sizeof(Item), kBlockBytes);
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    EXPECT_EQ(items[k].index, k);
+    EXPECT_EQ(items[k].payload, std::vector<int>(1 + k % 3, int(k)));
+  }
+  std::vector<Item, HugePageAllocator<Item>> copy(count / 2, Item{7, {1, 2}});
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(copy.data()) % kBlockBytes, 0u);
+  EXPECT_EQ(copy.back().payload, (std::vector<int>{1, 2}));
 }
 
 }  // namespace
