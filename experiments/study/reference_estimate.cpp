@@ -71,7 +71,7 @@ nlohmann::json referenceOptionsToJson(const ReferenceOptions& options) {
 
 GoldOptions studyGoldOptions() {
   GoldOptions options;
-  options.exactTolerance = 1e-4;
+  options.exactTolerance = 3e-4;
   options.denseStrata = 16;
   options.denseReplicates = 8;
   return options;

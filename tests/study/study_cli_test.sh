@@ -43,7 +43,7 @@ fi
 /usr/bin/python3 - "$work/good.out" "$work/nogold.out" <<'PY' || failures=$((failures + 1))
 import json, sys
 gold, plain = (json.load(open(path)) for path in sys.argv[1:3])
-assert gold["gold"]["options"]["exact_tolerance"] == 1e-4, gold["gold"]["options"]
+assert gold["gold"]["options"]["exact_tolerance"] == 3e-4, gold["gold"]["options"]
 assert gold["gold"]["noise_check"]["holds"] in (True, False)
 assert "l1_error_bound_vs_gold" in gold["classes"]["partial"]["rules"][0], "no gold scores by default"
 assert "gold" not in plain, "--no-gold still scored against the gold"
