@@ -18,9 +18,11 @@ namespace {
 // multiply-adds: a gather visits every link in every iteration. A link that keeps every
 // column multiplies K (F x F) by B (F x 3); one that keeps the columns of its P source points
 // multiplies them (F x P) by the source's projection Bhat (P x 3, source_projection.h), which
-// reads and multiplies P / F of the coupling.
+// reads and multiplies P / F of the coupling. The links come from the gather table (16 bytes
+// each, in the order they are read) rather than from the link records (88 bytes each, spread
+// over the whole array).
 template <int F>
-void gatherLinks(const LinkArray& links, const CouplingStore& couplings,
+void gatherLinks(const GatherEntry* entries, std::size_t count,
                  const Hierarchy& hierarchy, const std::vector<std::ptrdiff_t>& offsets,
                  const std::vector<double>& projections, Element& element) {
   const int functions = int(element.gathered.rows());
@@ -30,35 +32,28 @@ void gatherLinks(const LinkArray& links, const CouplingStore& couplings,
   using Columns = Eigen::Matrix<float, F, Eigen::Dynamic>;
   using Projection = Eigen::Matrix<double, Eigen::Dynamic, 3>;
   Block sum = Block::Zero(functions, 3);
-  const std::vector<int>& indices = element.links;
-  for (std::size_t k = 0; k < indices.size(); ++k) {
-    // The links' records and couplings lie apart in memory: fetch those of the links a few
-    // places ahead while this one is multiplied.
-    if (k + 8 < indices.size()) __builtin_prefetch(&links[std::size_t(indices[k + 8])]);
-    if (k + 4 < indices.size()) {
-      const SolverLink& ahead = links[std::size_t(indices[k + 4])];
-      if (ahead.coupling.slot >= 0) {
-        const char* start =
-            reinterpret_cast<const char*>(couplings.data(keptColumns(ahead), ahead.coupling.slot));
-        const std::size_t bytes =
-            std::size_t(functions) * std::size_t(keptColumns(ahead)) * sizeof(float);
-        for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
-      }
+  for (std::size_t k = 0; k < count; ++k) {
+    // The couplings lie apart in memory: fetch those of the links a few places ahead while
+    // this one is multiplied.
+    if (k + 4 < count) {
+      const GatherEntry& ahead = entries[k + 4];
+      const char* start = reinterpret_cast<const char*>(ahead.coupling);
+      const std::size_t bytes =
+          std::size_t(functions) * std::size_t(ahead.pointsU * ahead.pointsV) * sizeof(float);
+      for (std::size_t line = 0; line < bytes; line += 64) __builtin_prefetch(start + line);
     }
-    const SolverLink& link = links[std::size_t(indices[k])];
-    if (!link.coupling.computed) continue;  // its source had no radiosity yet
-    const float* coupling = couplings.data(keptColumns(link), link.coupling.slot);
-    const int pu = link.coupling.gatherPoints[0], pv = link.coupling.gatherPoints[1];
+    const GatherEntry& entry = entries[k];
+    const int pu = entry.pointsU, pv = entry.pointsV;
     if (pu == orders && pv == orders) {
-      sum.noalias() += Eigen::Map<const Matrix>(coupling, functions, functions)
+      sum.noalias() += Eigen::Map<const Matrix>(entry.coupling, functions, functions)
                            .template cast<double>()
                            .lazyProduct(Eigen::Map<const Block>(
-                               hierarchy[link.source].radiosity.data(), functions, 3));
+                               hierarchy[entry.source].radiosity.data(), functions, 3));
     } else {
       const std::ptrdiff_t offset =
-          offsets[std::size_t(link.source) * std::size_t(functions) +
+          offsets[std::size_t(entry.source) * std::size_t(functions) +
                   std::size_t((pu - 1) * orders + pv - 1)];
-      sum.noalias() += Eigen::Map<const Columns>(coupling, functions, pu * pv)
+      sum.noalias() += Eigen::Map<const Columns>(entry.coupling, functions, pu * pv)
                            .template cast<double>()
                            .lazyProduct(Eigen::Map<const Projection>(
                                projections.data() + offset, pu * pv, 3));
@@ -105,28 +100,54 @@ void Solver::projectSources() {
 // source's radiosity from the previous iteration (Jacobi).
 void Solver::gather() {
   projectSources();
+  if (!impl_->gatherCurrent) buildGatherTable();
   const int functions = hierarchy_->functions();
-  const CouplingStore& couplings = impl_->couplings;
+  const Impl& impl = *impl_;
   tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
     Element& element = (*hierarchy_)[int(e)];
+    const GatherEntry* entries = impl.gatherEntries.data() + impl.gatherBegin[e];
+    const std::size_t count = impl.gatherBegin[e + 1] - impl.gatherBegin[e];
     switch (functions) {
       case 1:
-        return gatherLinks<1>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
-                              element);
+        return gatherLinks<1>(entries, count, *hierarchy_, projectionOffset_, projections_, element);
       case 4:
-        return gatherLinks<4>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
-                              element);
+        return gatherLinks<4>(entries, count, *hierarchy_, projectionOffset_, projections_, element);
       case 9:
-        return gatherLinks<9>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
-                              element);
+        return gatherLinks<9>(entries, count, *hierarchy_, projectionOffset_, projections_, element);
       case 16:
-        return gatherLinks<16>(links_, couplings, *hierarchy_, projectionOffset_, projections_,
+        return gatherLinks<16>(entries, count, *hierarchy_, projectionOffset_, projections_,
                                element);
       default:
-        return gatherLinks<Eigen::Dynamic>(links_, couplings, *hierarchy_, projectionOffset_,
+        return gatherLinks<Eigen::Dynamic>(entries, count, *hierarchy_, projectionOffset_,
                                            projections_, element);
     }
   });
+}
+
+// The gather table from the elements' lists of active links: every link whose coupling is
+// computed (one whose source had no radiosity yet is left out, as it carries nothing).
+void Solver::buildGatherTable() {
+  const std::size_t elements = hierarchy_->size();
+  impl_->gatherBegin.assign(elements + 1, 0);
+  for (std::size_t e = 0; e < elements; ++e) {
+    std::size_t computed = 0;
+    for (int index : (*hierarchy_)[int(e)].links) {
+      computed += links_[std::size_t(index)].coupling.computed ? 1 : 0;
+    }
+    impl_->gatherBegin[e + 1] = impl_->gatherBegin[e] + computed;
+  }
+  impl_->gatherEntries.resize(impl_->gatherBegin[elements]);
+  tbb::parallel_for(std::size_t(0), elements, [&](std::size_t e) {
+    std::size_t k = impl_->gatherBegin[e];
+    for (int index : (*hierarchy_)[int(e)].links) {
+      const SolverLink& link = links_[std::size_t(index)];
+      if (!link.coupling.computed) continue;
+      impl_->gatherEntries[k++] = GatherEntry{
+          impl_->couplings.data(keptColumns(link), link.coupling.slot), link.source,
+          std::uint8_t(link.coupling.gatherPoints[0]), std::uint8_t(link.coupling.gatherPoints[1])};
+    }
+  });
+  impl_->gatherCurrent = true;
 }
 
 }  // namespace radquad

@@ -64,6 +64,8 @@ void Solver::computeCouplings() {
     rules.push_back(rule);
     again.push_back(link.coupling.computed);
   }
+  // Slots and kept columns change below: the gather table is built again.
+  if (!todo.empty()) impl_->gatherCurrent = false;
   const auto chosen = std::chrono::steady_clock::now();
   // Storage for the links' kept columns (untimed: allocation, not integration): a product
   // rule keeps min(Su, n) x min(Sv, n) columns, a composite rule all n^2
@@ -132,6 +134,7 @@ void Solver::computeCouplings() {
 }
 
 void Solver::rebuildElementLinks() {
+  impl_->gatherCurrent = false;
   for (std::size_t e = 0; e < hierarchy_->size(); ++e) (*hierarchy_)[int(e)].links.clear();
   for (std::size_t k = 0; k < links_.size(); ++k) {
     if (links_[k].active) (*hierarchy_)[links_[k].receiver].links.push_back(int(k));
@@ -264,6 +267,9 @@ void Solver::solve() {
   // are released so that a solver kept for its solution does not hold them.
   statistics_.couplingStoreBytes = impl_->couplings.bytes();
   impl_->couplings = CouplingStore(hierarchy_->functions());
+  impl_->gatherEntries = {};
+  impl_->gatherBegin = {};
+  impl_->gatherCurrent = false;
   for (SolverLink& link : links_) link.coupling.slot = -1;
 }
 

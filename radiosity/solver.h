@@ -242,6 +242,7 @@ class Solver {
   void computeCouplings();
   void projectSources();
   void gather();
+  void buildGatherTable();
   double pushPull();
   void rebuildElementLinks();
   void countLinks();

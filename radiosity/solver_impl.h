@@ -8,6 +8,9 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <vector>
+
 #include "kernel/occluder_scene.h"
 #include "radiosity/coupling_store.h"
 #include "radiosity/gauss_tables.h"
@@ -16,6 +19,14 @@
 #include "radiosity/source_projection.h"
 
 namespace radquad {
+
+// One link as the gather reads it (16 bytes, where its record takes 88).
+struct GatherEntry {
+  const float* coupling;     // its kept columns in the coupling store
+  int source;                // the source element
+  std::uint8_t pointsU = 0;  // the source points its columns belong to (gatherPoints)
+  std::uint8_t pointsV = 0;
+};
 
 struct Solver::Impl {
   Impl(const Scene& scene, int degree, DroppedOrders dropped)
@@ -33,6 +44,13 @@ struct Solver::Impl {
   CouplingStore couplings;  // each link's kept columns of K (rows receiver functions)
   SourceProjection projection;
   tbb::enumerable_thread_specific<Eigen::MatrixXd> scratch;  // a link's whole K
+  // What the gather reads of each link, receiver by receiver (gather.cpp): the links of
+  // element e are gatherEntries[gatherBegin[e] .. gatherBegin[e + 1]), in the order of its
+  // list of links. Built again whenever links or their couplings change (refinement, or a
+  // coupling pass that integrated some link); otherwise the iterations reuse it.
+  HugePageVector<GatherEntry> gatherEntries;
+  std::vector<std::size_t> gatherBegin;
+  bool gatherCurrent = false;
 };
 
 }  // namespace radquad
