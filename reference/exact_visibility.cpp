@@ -155,8 +155,8 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : front) centroid += p;
   centroid /= double(front.size());
-  std::vector<Eigen::Vector4d> pyramid;
-  pyramid.reserve(front.size() + 2);
+  std::vector<Eigen::Vector4d>& pyramid = pyramid_;
+  pyramid.clear();
   pyramid.push_back({source.normal.x(), source.normal.y(), source.normal.z(),
                      -source.normal.dot(source.origin)});
   const double apexCut = source.normal.dot(source.origin) + height * (1.0 - kApexMargin);
@@ -168,7 +168,8 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     pyramid.push_back({normal.x(), normal.y(), normal.z(), -normal.dot(x)});
   }
 
-  shadows_.clear();
+  // The shadows, in storage kept from point to point (shadows_[0, shadowCount)).
+  std::size_t shadowCount = 0;
   shadowBounds_.clear();
   for (const auto& polygon : candidates_) {
     bool rejected = false;
@@ -188,13 +189,24 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     if (rejected) continue;
     clipA_ = polygon;
     for (const auto& plane : pyramid) {
+      // Most planes cut no occluder: one with every vertex inside is left as it is (the clip
+      // would return the same vertices in the same order).
+      bool allInside = true;
+      for (const auto& p : clipA_) {
+        if (!(plane.head<3>().dot(p) + plane[3] >= 0.0)) {
+          allInside = false;
+          break;
+        }
+      }
+      if (allInside) continue;
       clipConvexPolygon(clipA_, plane.head<3>(), plane[3], clipB_);
       std::swap(clipA_, clipB_);
       if (clipA_.size() < 3) break;
     }
     if (clipA_.size() < 3) continue;
-    SourceRing shadow;
-    shadow.reserve(clipA_.size());
+    if (shadowCount == shadows_.size()) shadows_.emplace_back();
+    SourceRing& shadow = shadows_[shadowCount];
+    shadow.clear();
     Eigen::Vector4d bounds(1e300, 1e300, -1e300, -1e300);
     for (const auto& q : clipA_) {
       const double depth = height - source.normal.dot(q - source.origin);  // > 0 inside
@@ -207,14 +219,14 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     const double area = ringArea(shadow);
     if (area == 0.0 || !std::isfinite(area)) continue;
     if (area < 0.0) std::reverse(shadow.begin(), shadow.end());
-    shadows_.push_back(std::move(shadow));
+    ++shadowCount;
     shadowBounds_.push_back(bounds);
   }
-  if (shadows_.empty()) return;
+  if (shadowCount == 0) return;
 
   bool overlapping = false;
-  for (std::size_t i = 0; i < shadows_.size() && !overlapping; ++i) {
-    for (std::size_t j = i + 1; j < shadows_.size(); ++j) {
+  for (std::size_t i = 0; i < shadowCount && !overlapping; ++i) {
+    for (std::size_t j = i + 1; j < shadowCount; ++j) {
       const auto& a = shadowBounds_[i];
       const auto& b = shadowBounds_[j];
       if (a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3] &&
@@ -225,13 +237,15 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     }
   }
   if (!overlapping) {
-    for (const auto& shadow : shadows_) out.add(shadow, -1.0);
+    for (std::size_t i = 0; i < shadowCount; ++i) out.add(shadows_[i], -1.0);
     return;
   }
   ++statistics_.unions;
-  ClipperLib::Paths paths(shadows_.size());
-  for (std::size_t i = 0; i < shadows_.size(); ++i) {
-    paths[i].reserve(shadows_[i].size());
+  // The paths keep their storage from point to point too (Clipper's own edges do not).
+  ClipperLib::Paths& paths = clipperPaths_;
+  paths.resize(shadowCount);
+  for (std::size_t i = 0; i < shadowCount; ++i) {
+    paths[i].clear();
     for (const auto& p : shadows_[i]) {
       paths[i].push_back({ClipperLib::cInt(std::llround(p.x() * kClipperScale)),
                           ClipperLib::cInt(std::llround(p.y() * kClipperScale))});
@@ -239,7 +253,7 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   }
   ClipperLib::Clipper clipper;
   clipper.AddPaths(paths, ClipperLib::ptSubject, true);
-  ClipperLib::Paths united;
+  ClipperLib::Paths& united = clipperUnion_;
   clipper.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   const std::size_t first = out.count();
   double total = 0.0;

@@ -18,6 +18,8 @@
 // segment between them.
 #pragma once
 
+#include <polyclipping/clipper.hpp>
+
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -84,8 +86,10 @@ class ExactVisibility {
   ExactVisibilityStatistics statistics_;
   // Scratch.
   std::vector<Eigen::Vector3d> clipA_, clipB_, front_;
-  std::vector<SourceRing> shadows_;
+  std::vector<Eigen::Vector4d> pyramid_;
+  std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
   std::vector<Eigen::Vector4d> shadowBounds_;
+  ClipperLib::Paths clipperPaths_, clipperUnion_;
 };
 
 // Sutherland-Hodgman clip of a convex polygon (as a vertex list) to the half-space

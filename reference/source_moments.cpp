@@ -334,11 +334,17 @@ double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d
     const SourceRing& ring = visible.ring(r);
     double sum = 0.0;
     const std::size_t count = ring.size();
+    if (count == 0) continue;
+    // Each vertex's offset from x once: it ends one edge and starts the next.
+    const Eigen::Vector3d first = source_.pointAt(ring[0].x(), ring[0].y()) - x;
+    Eigen::Vector3d r1 = first;
     for (std::size_t i = 0; i < count; ++i) {
-      const Eigen::Vector2d& a = ring[i];
-      const Eigen::Vector2d& b = ring[(i + 1) % count];
-      const Eigen::Vector3d r0 = source_.pointAt(a.x(), a.y()) - x;
-      const Eigen::Vector3d r1 = source_.pointAt(b.x(), b.y()) - x;
+      const Eigen::Vector3d r0 = r1;
+      if (i + 1 < count) {
+        r1 = source_.pointAt(ring[i + 1].x(), ring[i + 1].y()) - x;
+      } else {
+        r1 = first;
+      }
       const Eigen::Vector3d cross = r0.cross(r1);
       const double crossNorm = cross.norm();
       if (crossNorm == 0.0) continue;
