@@ -29,7 +29,11 @@ double maxAbs(const Eigen::MatrixXd& matrix) {
 // The Gauss sequence; returns false if a ray was blocked (the link is occluded).
 bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& gold) {
   LinkIntegral previous;
-  CouplingAccumulator accumulator;
+  // One accumulator per thread for every link's sequence: its buffers grow to the largest
+  // order once (48^4 kernel values) instead of being allocated, faulted in and zeroed again
+  // for every link. Nothing in the sequence waits on other tasks, so a thread never enters
+  // it twice at once.
+  thread_local CouplingAccumulator accumulator;
   bool havePrevious = false;
   for (int n : kGaussOrders) {
     const PreparedRule prepared(std::make_shared<GaussProductRule>(GaussPointCounts{n, n, n, n}), degree);
