@@ -171,34 +171,24 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   // The shadows, in storage kept from point to point (shadows_[0, shadowCount)).
   std::size_t shadowCount = 0;
   shadowBounds_.clear();
+  // The side of a pyramid plane that clipConvexPolygon keeps.
+  auto inside = [](const Eigen::Vector4d& plane, const Eigen::Vector3d& p) {
+    return plane.head<3>().dot(p) + plane[3] >= 0.0;
+  };
   for (const auto& polygon : candidates_) {
-    bool rejected = false;
-    for (const auto& plane : pyramid) {
-      bool allOutside = true;
-      for (const auto& p : polygon) {
-        if (plane.head<3>().dot(p) + plane[3] >= 0.0) {
-          allOutside = false;
-          break;
-        }
-      }
-      if (allOutside) {
-        rejected = true;
-        break;
-      }
-    }
+    const bool rejected = std::any_of(pyramid.begin(), pyramid.end(), [&](const auto& plane) {
+      return std::none_of(polygon.begin(), polygon.end(),
+                          [&](const auto& p) { return inside(plane, p); });
+    });
     if (rejected) continue;
     clipA_ = polygon;
     for (const auto& plane : pyramid) {
       // Most planes cut no occluder: one with every vertex inside is left as it is (the clip
       // would return the same vertices in the same order).
-      bool allInside = true;
-      for (const auto& p : clipA_) {
-        if (!(plane.head<3>().dot(p) + plane[3] >= 0.0)) {
-          allInside = false;
-          break;
-        }
+      if (std::all_of(clipA_.begin(), clipA_.end(),
+                      [&](const auto& p) { return inside(plane, p); })) {
+        continue;
       }
-      if (allInside) continue;
       clipConvexPolygon(clipA_, plane.head<3>(), plane[3], clipB_);
       std::swap(clipA_, clipB_);
       if (clipA_.size() < 3) break;
