@@ -7,9 +7,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <thread>
+#include <unordered_map>
 #include <vector>
 
 #include "kernel/input_error.h"
@@ -85,21 +88,83 @@ struct OuterIntegrand {
   }
 };
 
+// The values of the points a Genz-Malik run computed, for the runs that repeat it at a
+// quarter of its tolerance: a repeat starts again from the whole square and halves its
+// regions the same way, so most of the points it asks for are the earlier runs' points, to
+// the last bit. Their values are looked up instead of computed again, and they are the
+// same either way (a point's value depends on the point alone, not on the thread or on the
+// points before it). At most `capacity` points are kept: the runs that are repeated took
+// fewer than minEvaluations points each.
+class PointCache {
+ public:
+  PointCache(std::size_t capacity, unsigned values) : capacity_(capacity), values_(values) {}
+
+  // The stored values of (s, t), or nullptr.
+  const double* find(double s, double t) const {
+    if (capacity_ == 0) return nullptr;
+    const auto it = index_.find(Key{std::bit_cast<std::uint64_t>(s), std::bit_cast<std::uint64_t>(t)});
+    return it == index_.end() ? nullptr : stored_.data() + it->second;
+  }
+
+  void add(double s, double t, const double* values) {
+    if (index_.size() >= capacity_) return;
+    const Key key{std::bit_cast<std::uint64_t>(s), std::bit_cast<std::uint64_t>(t)};
+    if (!index_.emplace(key, stored_.size()).second) return;
+    stored_.insert(stored_.end(), values, values + values_);
+  }
+
+ private:
+  struct Key {
+    std::uint64_t s, t;
+    bool operator==(const Key&) const = default;
+  };
+  struct Hash {
+    std::size_t operator()(const Key& key) const {
+      return std::hash<std::uint64_t>()(key.s * 0x9E3779B97F4A7C15ull ^ key.t);
+    }
+  };
+  std::size_t capacity_;
+  unsigned values_;
+  std::unordered_map<Key, std::size_t, Hash> index_;
+  std::vector<double> stored_;
+};
+
+struct CallbackData {
+  OuterIntegrand* integrand;
+  PointCache* cache;
+  std::uint64_t requested = 0;     // the points asked for, those found in the cache included
+  std::vector<std::size_t> fresh;  // scratch: the batch's points not in the cache
+};
+
 // Points are independent: a batch is spread over threads, and the values do not depend on
 // which thread computed them.
 int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* points, void* data,
                       unsigned values, double* out) {
-  auto* integrand = static_cast<OuterIntegrand*>(data);
-  integrand->points += count;
+  auto& call = *static_cast<CallbackData*>(data);
+  OuterIntegrand* integrand = call.integrand;
+  std::vector<std::size_t>& fresh = call.fresh;
+  fresh.clear();
+  call.requested += count;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double* known = call.cache->find(points[2 * k], points[2 * k + 1]);
+    if (known) {
+      std::memcpy(out + k * values, known, values * sizeof(double));
+    } else {
+      fresh.push_back(k);
+    }
+  }
+  integrand->points += fresh.size();
   integrand->report(integrand->points);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 8),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fresh.size(), 8),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       Worker& worker = integrand->workers.local();
-                      for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                      for (std::size_t f = range.begin(); f < range.end(); ++f) {
+                        const std::size_t k = fresh[f];
                         integrand->evaluate(worker, points[2 * k], points[2 * k + 1],
                                             out + k * values);
                       }
                     });
+  for (std::size_t k : fresh) call.cache->add(points[2 * k], points[2 * k + 1], out + k * values);
   return integrand->finite() ? 0 : 1;
 }
 
@@ -299,6 +364,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const unsigned values = unsigned(integrand.functions * integrand.functions);
   std::vector<double> value(values), error(values);
   ExactGold gold;
+  std::uint64_t requestedPoints = 0;
   auto genzMalik = [&] {
     // Genz-Malik's estimate (its embedded degree-5 rule) can miss what a run of few regions
     // never samples, a thin shadow between its points: at a tolerance of 1e-4, 4 of 84 of the
@@ -308,12 +374,16 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     // left holds minEvaluations points); the last run that met its tolerance is the result.
     // (The retries sample more regions; the inner integrals keep the accuracy the requested
     // tolerance asked for, a hundredth of it.)
+    // The rounds and the budget count the points the runs asked for, repeats included (as
+    // many as they would compute without the cache); integrand.points, those computed.
     double tolerance = options.tolerance;
     std::vector<double> runValue(values), runError(values);
+    PointCache cache(options.reuseRepeatedPoints ? 2 * options.minEvaluations : 0, values);
+    CallbackData call{&integrand, &cache, 0, {}};
     for (int round = 0;; ++round) {
-      const std::uint64_t before = integrand.points;
+      const std::uint64_t before = call.requested;
       const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
-      const int status = hcubature_v(values, integrandCallback, &integrand, 2, low, high,
+      const int status = hcubature_v(values, integrandCallback, &call, 2, low, high,
                                      options.maxEvaluations - before, 0.0, tolerance, ERROR_LINF,
                                      runValue.data(), runError.data());
       if (!integrand.finite()) {
@@ -330,12 +400,13 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
         value = runValue;
         error = runError;
       }
-      if (!met || integrand.points - before >= options.minEvaluations || round == 5 ||
-          options.maxEvaluations - integrand.points < options.minEvaluations) {
+      if (!met || call.requested - before >= options.minEvaluations || round == 5 ||
+          options.maxEvaluations - call.requested < options.minEvaluations) {
         break;
       }
       tolerance *= 0.25;
     }
+    requestedPoints = call.requested;
   };
   bool lines = options.outer == ExactOuterMethod::criticalLines;
   if (lines) {
@@ -355,6 +426,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     if (lines) {
       cubature.run(value, error);
       integrand.points = cubature.points();
+      requestedPoints = integrand.points;
       if (!integrand.finite()) {
         throw ComputationError("exact gold: the inner integral was not finite");
       }
@@ -377,6 +449,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const double largest = gold.coupling.cwiseAbs().maxCoeff();
   gold.converged = gold.couplingError.maxCoeff() <= options.tolerance * largest;
   gold.receiverPoints = integrand.points;
+  gold.requestedPoints = requestedPoints;
   // Every worker culled the same shaft: read the count from one instead of culling again.
   for (const Worker& worker : integrand.workers) {
     gold.polygonUnions += worker.visibility.statistics().unions;

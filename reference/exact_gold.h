@@ -41,10 +41,15 @@ enum class ExactOuterMethod { criticalLines, genzMalik };
 
 struct ExactGoldOptions {
   double tolerance = 1e-7;             // estimated error / max |K| entry
-  std::size_t maxEvaluations = 4000000;  // receiver points, each an exact inner integral
+  // The budget of receiver points (each an exact inner integral); Genz-Malik counts the
+  // points its runs ask for, those looked up again included.
+  std::size_t maxEvaluations = 4000000;
   // Genz-Malik: a run that meets the tolerance in fewer receiver points is repeated at a
   // quarter of it (exact_gold.cpp says why).
   std::size_t minEvaluations = 4000;
+  // Genz-Malik: a repeat looks up the points the earlier runs computed instead of computing
+  // them again (the same values; false only to measure what that saves).
+  bool reuseRepeatedPoints = true;
   ExactOuterMethod outer = ExactOuterMethod::criticalLines;
   // Critical lines: the share of the tolerance left to the inner (t) integrals, and the
   // receiver points one line may take.
@@ -72,7 +77,8 @@ struct ExactGold {
   double formFactor = 0.0;
   double formFactorError = 0.0;
   bool converged = false;
-  std::uint64_t receiverPoints = 0;   // outer evaluations
+  std::uint64_t receiverPoints = 0;   // outer evaluations: receiver points computed
+  std::uint64_t requestedPoints = 0;  // the points the outer cubature asked for, repeats included
   std::uint64_t polygonUnions = 0;    // receiver points whose shadows overlapped
   std::size_t candidateOccluders = 0;  // occluder polygons in the link's shaft
   std::size_t criticalSegments = 0;    // critical lines: segments on the receiver

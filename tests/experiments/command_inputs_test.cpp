@@ -50,6 +50,38 @@ TEST(ExactGold, GenzMalikAtALooseToleranceDoesNotStopOnOneRegion) {
   EXPECT_LT(std::fabs(gold.formFactor - reference.formFactor), 1e-4 * reference.formFactor);
 }
 
+TEST(ExactGold, GenzMalikRepeatsComputeEachReceiverPointOnce) {
+  // On the slats link above, Genz-Malik meets a loose tolerance in fewer than minEvaluations
+  // points and is repeated at a quarter of it, more than once. The repeats look up the
+  // points the earlier runs computed: the same result to the last bit as computing them all
+  // again, the same points asked for, fewer computed. Without the lookups every point asked
+  // for is computed.
+  const LinkGeometry description =
+      readLinkFile(std::filesystem::path(RADQUAD_TEST_DATA) / "slats_link.json");
+  const BuiltLink sceneLink = description.build();
+  for (int degree : {0, 2}) {
+    SCOPED_TRACE(degree);
+    ExactGoldOptions reuse;
+    reuse.tolerance = 3e-4;
+    reuse.outer = ExactOuterMethod::genzMalik;
+    ExactGoldOptions again = reuse;
+    again.reuseRepeatedPoints = false;
+    const ExactGold looked = exactGold(sceneLink.link, degree, reuse);
+    const ExactGold computed = exactGold(sceneLink.link, degree, again);
+    EXPECT_EQ(computed.receiverPoints, computed.requestedPoints);
+    EXPECT_EQ(looked.requestedPoints, computed.requestedPoints);
+    EXPECT_GT(computed.requestedPoints, reuse.minEvaluations);
+    // The first run's points at least are found again.
+    EXPECT_LT(looked.receiverPoints, looked.requestedPoints);
+    EXPECT_GE(looked.receiverPoints, reuse.minEvaluations);
+    ASSERT_EQ(looked.coupling.rows(), computed.coupling.rows());
+    for (Eigen::Index a = 0; a < looked.coupling.size(); ++a) {
+      EXPECT_EQ(looked.coupling.data()[a], computed.coupling.data()[a]) << a;
+      EXPECT_EQ(looked.couplingError.data()[a], computed.couplingError.data()[a]) << a;
+    }
+  }
+}
+
 // The trace's JSON: the same text for any thread count, and a standard error that cannot be
 // estimated (one sample) written as null, never as a number.
 TraceResult trace(const Scene& scene, std::uint64_t samples, int threads = 0) {
