@@ -9,7 +9,6 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <functional>
 #include <thread>
 #include <unordered_map>
@@ -69,16 +68,24 @@ struct OuterIntegrand {
         scale(std::sqrt(l.receiver.area / l.source.area)),
         workers([&l, d, tolerance] { return Worker(l, d, 1e-2 * tolerance); }) {}
 
-  void evaluate(Worker& worker, double s, double t, double* out) const {
+  // The point's functions^2 values into `out`; its inner integrals (functions values) into
+  // `inner` too unless it is null.
+  void evaluate(Worker& worker, double s, double t, double* out, double* inner = nullptr) const {
     const Eigen::Vector3d x = link.receiver.pointAt(s, t);
     worker.visibility.visibleRings(x, worker.rings);
     worker.moments.compute(x, link.receiver.normal, worker.rings, worker.inner.data());
-    tensorBasisValues(degree, s, t, worker.receiverValues.data());
-    for (int a = 0; a < functions; ++a) {
-      const double weight = scale * worker.receiverValues[a];
-      for (int b = 0; b < functions; ++b) out[a * functions + b] = weight * worker.inner[b];
-    }
+    expand(worker.receiverValues.data(), s, t, worker.inner.data(), out);
     for (int b = 0; b < functions; ++b) worker.finite = worker.finite && std::isfinite(worker.inner[b]);
+    if (inner) std::copy(worker.inner.begin(), worker.inner.end(), inner);
+  }
+
+  // The values at (s, t) from its inner integrals; receiverValues: scratch of `functions`.
+  void expand(double* receiverValues, double s, double t, const double* inner, double* out) const {
+    tensorBasisValues(degree, s, t, receiverValues);
+    for (int a = 0; a < functions; ++a) {
+      const double weight = scale * receiverValues[a];
+      for (int b = 0; b < functions; ++b) out[a * functions + b] = weight * inner[b];
+    }
   }
 
   bool finite() {
@@ -88,29 +95,32 @@ struct OuterIntegrand {
   }
 };
 
-// The values of the points a Genz-Malik run computed, for the runs that repeat it at a
-// quarter of its tolerance: a repeat starts again from the whole square and halves its
+// The inner integrals of the points a Genz-Malik run computed, for the runs that repeat it at
+// a quarter of its tolerance: a repeat starts again from the whole square and halves its
 // regions the same way, so most of the points it asks for are the earlier runs' points, to
-// the last bit. Their values are looked up instead of computed again, and they are the
-// same either way (a point's value depends on the point alone, not on the thread or on the
-// points before it). At most `capacity` points are kept: the runs that are repeated took
-// fewer than minEvaluations points each.
+// the last bit. Their inner integrals are looked up instead of computed again, and they are
+// the same either way (a point's inner integrals depend on the point alone, not on the
+// thread or on the points before it). At most `capacity` points are kept (their storage
+// taken at once): the runs that are repeated took fewer than minEvaluations points each.
 class PointCache {
  public:
-  PointCache(std::size_t capacity, unsigned values) : capacity_(capacity), values_(values) {}
+  PointCache(std::size_t capacity, int functions)
+      : capacity_(capacity), functions_(std::size_t(functions)) {
+    index_.reserve(capacity);
+    stored_.reserve(capacity * functions_);
+  }
 
-  // The stored values of (s, t), or nullptr.
+  // The stored inner integrals of (s, t), or nullptr.
   const double* find(double s, double t) const {
     if (capacity_ == 0) return nullptr;
-    const auto it = index_.find(Key{std::bit_cast<std::uint64_t>(s), std::bit_cast<std::uint64_t>(t)});
+    const auto it = index_.find(keyOf(s, t));
     return it == index_.end() ? nullptr : stored_.data() + it->second;
   }
 
-  void add(double s, double t, const double* values) {
+  void add(double s, double t, const double* inner) {
     if (index_.size() >= capacity_) return;
-    const Key key{std::bit_cast<std::uint64_t>(s), std::bit_cast<std::uint64_t>(t)};
-    if (!index_.emplace(key, stored_.size()).second) return;
-    stored_.insert(stored_.end(), values, values + values_);
+    if (!index_.emplace(keyOf(s, t), stored_.size()).second) return;
+    stored_.insert(stored_.end(), inner, inner + functions_);
   }
 
  private:
@@ -123,8 +133,11 @@ class PointCache {
       return std::hash<std::uint64_t>()(key.s * 0x9E3779B97F4A7C15ull ^ key.t);
     }
   };
+  static Key keyOf(double s, double t) {
+    return {std::bit_cast<std::uint64_t>(s), std::bit_cast<std::uint64_t>(t)};
+  }
   std::size_t capacity_;
-  unsigned values_;
+  std::size_t functions_;
   std::unordered_map<Key, std::size_t, Hash> index_;
   std::vector<double> stored_;
 };
@@ -132,8 +145,10 @@ class PointCache {
 struct CallbackData {
   OuterIntegrand* integrand;
   PointCache* cache;
-  std::uint64_t requested = 0;     // the points asked for, those found in the cache included
-  std::vector<std::size_t> fresh;  // scratch: the batch's points not in the cache
+  std::uint64_t requested = 0;        // the points asked for, those found in the cache included
+  std::vector<std::size_t> fresh;     // scratch: the batch's points not in the cache
+  std::vector<double> inner;          // scratch: their inner integrals
+  std::vector<double> receiverValues; // scratch: the receiver's functions at a point
 };
 
 // Points are independent: a batch is spread over threads, and the values do not depend on
@@ -142,29 +157,35 @@ int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* 
                       unsigned values, double* out) {
   auto& call = *static_cast<CallbackData*>(data);
   OuterIntegrand* integrand = call.integrand;
+  const std::size_t functions = std::size_t(integrand->functions);
   std::vector<std::size_t>& fresh = call.fresh;
   fresh.clear();
   call.requested += count;
+  call.receiverValues.resize(functions);
   for (std::size_t k = 0; k < count; ++k) {
-    const double* known = call.cache->find(points[2 * k], points[2 * k + 1]);
-    if (known) {
-      std::memcpy(out + k * values, known, values * sizeof(double));
+    const double s = points[2 * k], t = points[2 * k + 1];
+    if (const double* known = call.cache->find(s, t)) {
+      integrand->expand(call.receiverValues.data(), s, t, known, out + k * values);
     } else {
       fresh.push_back(k);
     }
   }
   integrand->points += fresh.size();
   integrand->report(integrand->points);
+  call.inner.resize(fresh.size() * functions);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fresh.size(), 8),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       Worker& worker = integrand->workers.local();
                       for (std::size_t f = range.begin(); f < range.end(); ++f) {
                         const std::size_t k = fresh[f];
                         integrand->evaluate(worker, points[2 * k], points[2 * k + 1],
-                                            out + k * values);
+                                            out + k * values, call.inner.data() + f * functions);
                       }
                     });
-  for (std::size_t k : fresh) call.cache->add(points[2 * k], points[2 * k + 1], out + k * values);
+  for (std::size_t f = 0; f < fresh.size(); ++f) {
+    const std::size_t k = fresh[f];
+    call.cache->add(points[2 * k], points[2 * k + 1], call.inner.data() + f * functions);
+  }
   return integrand->finite() ? 0 : 1;
 }
 
@@ -378,8 +399,9 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     // many as they would compute without the cache); integrand.points, those computed.
     double tolerance = options.tolerance;
     std::vector<double> runValue(values), runError(values);
-    PointCache cache(options.reuseRepeatedPoints ? 2 * options.minEvaluations : 0, values);
-    CallbackData call{&integrand, &cache, 0, {}};
+    PointCache cache(options.reuseRepeatedPoints ? 2 * options.minEvaluations : 0,
+                     integrand.functions);
+    CallbackData call{&integrand, &cache, 0, {}, {}, {}};
     for (int round = 0;; ++round) {
       const std::uint64_t before = call.requested;
       const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
