@@ -214,32 +214,43 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   }
   if (shadowCount == 0) return;
 
-  bool overlapping = false;
-  for (std::size_t i = 0; i < shadowCount && !overlapping; ++i) {
+  // Shadows that overlap no other shadow count as they are; only those that overlap some
+  // other go to Clipper's union (one call for all of them: the union of disjoint groups is
+  // their rings side by side).
+  std::vector<char>& overlaps = overlaps_;
+  overlaps.assign(shadowCount, 0);
+  for (std::size_t i = 0; i < shadowCount; ++i) {
     for (std::size_t j = i + 1; j < shadowCount; ++j) {
+      if (overlaps[i] && overlaps[j]) continue;
       const auto& a = shadowBounds_[i];
       const auto& b = shadowBounds_[j];
       if (a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3] &&
           convexRingsOverlap(shadows_[i], shadows_[j])) {
-        overlapping = true;
-        break;
+        overlaps[i] = overlaps[j] = 1;
       }
     }
   }
-  if (!overlapping) {
-    for (std::size_t i = 0; i < shadowCount; ++i) out.add(shadows_[i], -1.0);
-    return;
+  std::size_t overlapping = 0;
+  for (std::size_t i = 0; i < shadowCount; ++i) {
+    if (overlaps[i]) {
+      ++overlapping;
+    } else {
+      out.add(shadows_[i], -1.0);
+    }
   }
+  if (overlapping == 0) return;
   ++statistics_.unions;
   // The paths keep their storage from point to point too (Clipper's own edges do not).
   ClipperLib::Paths& paths = clipperPaths_;
-  paths.resize(shadowCount);
-  for (std::size_t i = 0; i < shadowCount; ++i) {
-    paths[i].clear();
+  paths.resize(overlapping);
+  for (std::size_t i = 0, path = 0; i < shadowCount; ++i) {
+    if (!overlaps[i]) continue;
+    paths[path].clear();
     for (const auto& p : shadows_[i]) {
-      paths[i].push_back({ClipperLib::cInt(std::llround(p.x() * kClipperScale)),
-                          ClipperLib::cInt(std::llround(p.y() * kClipperScale))});
+      paths[path].push_back({ClipperLib::cInt(std::llround(p.x() * kClipperScale)),
+                             ClipperLib::cInt(std::llround(p.y() * kClipperScale))});
     }
+    ++path;
   }
   ClipperLib::Clipper clipper;
   clipper.AddPaths(paths, ClipperLib::ptSubject, true);

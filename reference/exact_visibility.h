@@ -89,6 +89,7 @@ class ExactVisibility {
   std::vector<Eigen::Vector4d> pyramid_;
   std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
   std::vector<Eigen::Vector4d> shadowBounds_;
+  std::vector<char> overlaps_;  // per shadow: whether it overlaps another
   ClipperLib::Paths clipperPaths_, clipperUnion_;
 };
 

@@ -15,6 +15,7 @@
 #include "reference/exact_gold.h"
 #include "reference/exact_visibility.h"
 #include "reference/gold_reference.h"
+#include "reference/point_polygon_form_factor.h"
 #include "reference/source_moments.h"
 #include "tests/support/analytic_form_factors.h"
 #include "tests/support/polygon_form_factor.h"
@@ -190,6 +191,40 @@ TEST(SourceMoments, PolarMethodReproducesLambertsFormula) {
     const double lambert = moments.formFactor(x, normal, rings);
     EXPECT_NEAR(polar, lambert, 1e-12 * std::fabs(lambert) + 1e-15) << "point " << k;
   }
+}
+
+TEST(ExactVisibility, OverlappingAndSeparateShadowsLeaveWhatInclusionExclusionLeaves) {
+  // Three square occluders halfway between a receiver point and a unit source, parallel to
+  // both: their shadows are the squares scaled by 2 about the point's foot. Two shadows
+  // overlap (Clipper's union), the third overlaps neither (counted as it is). The visible
+  // form factor is the source's minus the shadows' by inclusion and exclusion, each from the
+  // closed-form point-to-rectangle form factor: no ring, no union, no clipping.
+  OccluderScene scene;
+  scene.addParallelogram(Patch::make({0.30, 0.30, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "a"));
+  scene.addParallelogram(Patch::make({0.40, 0.35, 0.5}, {0.10, 0, 0}, {0, 0.15, 0}, "b"));
+  scene.addParallelogram(Patch::make({0.55, 0.55, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "c"));
+  scene.commit();
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  const Link link{receiver, source, &scene};
+  const Eigen::Vector3d x(0.5, 0.5, 0.0), n(0, 0, 1);
+  // A rectangle [x0, x1] x [y0, y1] of the source's plane, facing the receiver as it does.
+  auto onSource = [](double x0, double x1, double y0, double y1) {
+    return Patch::make({x0, y1, 1}, {x1 - x0, 0, 0}, {0, y0 - y1, 0}, "shadow");
+  };
+  const double expected = pointToPatchFormFactor(x, n, source) -
+                          pointToPatchFormFactor(x, n, onSource(0.1, 0.4, 0.1, 0.4)) -
+                          pointToPatchFormFactor(x, n, onSource(0.3, 0.5, 0.2, 0.5)) +
+                          pointToPatchFormFactor(x, n, onSource(0.3, 0.4, 0.2, 0.4)) -
+                          pointToPatchFormFactor(x, n, onSource(0.6, 0.9, 0.6, 0.9));
+  ExactVisibility visibility(link);
+  VisibleRings rings;
+  visibility.visibleRings(x, rings);
+  EXPECT_EQ(visibility.statistics().unions, 1u);
+  EXPECT_EQ(rings.count(), 3u);  // the source, the separate shadow, the union of the others
+  const SourceMoments moments(source, 0);
+  EXPECT_NEAR(moments.formFactor(x, n, rings), expected, 1e-12);
+  EXPECT_LT(expected, 0.9 * pointToPatchFormFactor(x, n, source));
 }
 
 TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
