@@ -405,6 +405,8 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     for (int round = 0;; ++round) {
       const std::uint64_t before = call.requested;
       const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
+      // hcubature may overshoot its budget by a region's points: what is left is never
+      // allowed to wrap around (a repeat starts only while minEvaluations are left).
       const int status = hcubature_v(values, integrandCallback, &call, 2, low, high,
                                      options.maxEvaluations - before, 0.0, tolerance, ERROR_LINF,
                                      runValue.data(), runError.data());
@@ -423,7 +425,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
         error = runError;
       }
       if (!met || call.requested - before >= options.minEvaluations || round == 5 ||
-          options.maxEvaluations - call.requested < options.minEvaluations) {
+          call.requested + options.minEvaluations > options.maxEvaluations) {
         break;
       }
       tolerance *= 0.25;

@@ -67,10 +67,27 @@ std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Eigen::Vector3d>
 bool convexRingsOverlap(const SourceRing& a, const SourceRing& b) {
   // Separating axis theorem: disjoint (or touching along a boundary) iff some edge of one
   // ring has the other entirely on its outer side.
-  auto separated = [](const SourceRing& p, const SourceRing& q) {
+  // An edge too short for its direction to be trusted is no axis: the clip leaves a repeated
+  // vertex where an occluder's vertex lies exactly on a pyramid plane (every receiver point,
+  // for a vertex on the source's plane), and a zero edge has every point "outside" it. The
+  // cut is 1e-8 of the rings' extent: an edge's endpoints carry rounding of about 1e-16 of
+  // that, so a kept edge's direction is off by at most 1e-8 and so is the width of any
+  // overlap it could miss. Skipping an edge only sends a pair to the union that might have
+  // been subtracted separately.
+  if (a.empty() || b.empty()) return false;
+  Eigen::Vector2d low = a.front(), high = a.front();
+  for (const SourceRing* ring : {&a, &b}) {
+    for (const auto& point : *ring) {
+      low = low.cwiseMin(point);
+      high = high.cwiseMax(point);
+    }
+  }
+  const double shortest = 1e-8 * (high - low).maxCoeff();
+  auto separated = [shortest](const SourceRing& p, const SourceRing& q) {
     for (std::size_t i = 0, n = p.size(); i < n; ++i) {
       const Eigen::Vector2d& from = p[i];
       const Eigen::Vector2d edge = p[(i + 1) % n] - from;
+      if (!(edge.cwiseAbs().maxCoeff() > shortest)) continue;
       bool allOutside = true;
       for (const auto& point : q) {
         const Eigen::Vector2d offset = point - from;

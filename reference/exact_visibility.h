@@ -102,7 +102,9 @@ void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen:
 // points on a face count as inside. Brute force over point triples: for a handful of points.
 std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Eigen::Vector3d>& points);
 
-// Whether two convex counter-clockwise rings share interior points.
+// Whether two convex counter-clockwise rings share interior points. Repeated vertices are
+// allowed; an edge shorter than 1e-8 of the two rings' extent is not tried as a separating
+// axis, so the answer errs towards "overlap" (a pair then goes to the union, which is exact).
 bool convexRingsOverlap(const SourceRing& a, const SourceRing& b);
 
 // Signed area of a ring in the plane (positive when counter-clockwise).

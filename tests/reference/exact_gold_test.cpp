@@ -227,6 +227,55 @@ TEST(ExactVisibility, OverlappingAndSeparateShadowsLeaveWhatInclusionExclusionLe
   EXPECT_LT(expected, 0.9 * pointToPatchFormFactor(x, n, source));
 }
 
+TEST(ExactVisibility, OccluderVertexOnAPyramidPlaneIsSubtractedOnce) {
+  // Occluder a has a vertex exactly on the pyramid plane through the receiver point and the
+  // source's edge X = 0, and the next vertex outside it: the clip repeats that vertex, and
+  // a's shadow ring has an edge of length zero. Such an edge is no separating axis: a's
+  // shadow lies inside b's, which overlaps d's. As in the test above, the occluders lie
+  // halfway and parallel to the source, so every shadow is its occluder scaled by 2 about
+  // the point's foot, and the visible form factor is the source's minus b's and d's shadows
+  // by inclusion and exclusion of closed-form point-to-rectangle form factors (a hides
+  // nothing that b does not).
+  OccluderScene scene;
+  scene.addParallelogram(Patch::make({0.25, 0.36, 0.5}, {-0.05, 0.03, 0}, {0.10, 0.03, 0}, "a"));
+  scene.addParallelogram(Patch::make({0.25, 0.30, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "b"));
+  scene.addParallelogram(Patch::make({0.35, 0.40, 0.5}, {0.10, 0, 0}, {0, 0.10, 0}, "d"));
+  scene.commit();
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  const Link link{receiver, source, &scene};
+  const Eigen::Vector3d x(0.5, 0.5, 0.0), n(0, 0, 1);
+  auto onSource = [](double x0, double x1, double y0, double y1) {
+    return Patch::make({x0, y1, 1}, {x1 - x0, 0, 0}, {0, y0 - y1, 0}, "shadow");
+  };
+  const double expected = pointToPatchFormFactor(x, n, source) -
+                          pointToPatchFormFactor(x, n, onSource(0.0, 0.3, 0.1, 0.4)) -
+                          pointToPatchFormFactor(x, n, onSource(0.2, 0.4, 0.3, 0.5)) +
+                          pointToPatchFormFactor(x, n, onSource(0.2, 0.3, 0.3, 0.4));
+  ExactVisibility visibility(link);
+  VisibleRings rings;
+  visibility.visibleRings(x, rings);
+  EXPECT_EQ(visibility.statistics().unions, 1u);
+  const SourceMoments moments(source, 0);
+  EXPECT_NEAR(moments.formFactor(x, n, rings), expected, 1e-12);
+}
+
+TEST(ExactVisibility, RingsWithRepeatedVerticesOverlapAsTheirShapesDo) {
+  // A zero edge, and one of a few units in the last place (what the clip leaves), must not
+  // serve as a separating axis; the rings' real edges still separate disjoint ones.
+  const SourceRing square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const SourceRing repeated = {{0.5, 0.5}, {1.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}};
+  const SourceRing nearlyRepeated = {
+      {0.5, 0.5}, {1.5, 0.5}, {1.5 + 4e-16, 0.5 - 2e-16}, {1.5, 1.5}, {0.5, 1.5}};
+  const SourceRing apart = {{2, 0}, {3, 0}, {3, 0}, {3, 1}, {2, 1}};
+  for (const SourceRing* ring : {&repeated, &nearlyRepeated}) {
+    EXPECT_TRUE(convexRingsOverlap(square, *ring));
+    EXPECT_TRUE(convexRingsOverlap(*ring, square));
+  }
+  EXPECT_FALSE(convexRingsOverlap(square, apart));
+  EXPECT_FALSE(convexRingsOverlap(apart, square));
+}
+
 TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
   const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
   const Patch facing = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
