@@ -179,7 +179,14 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   const double apexCut = source.normal.dot(source.origin) + height * (1.0 - kApexMargin);
   pyramid.push_back({-source.normal.x(), -source.normal.y(), -source.normal.z(), apexCut});
   for (std::size_t i = 0; i < front.size(); ++i) {
-    Eigen::Vector3d normal = (front[i] - x).cross(front[(i + 1) % front.size()] - x);
+    const Eigen::Vector3d& a = front[i];
+    const Eigen::Vector3d& b = front[(i + 1) % front.size()];
+    // A source corner on x's tangent plane up to rounding (receiver and source sharing an
+    // edge or a corner, in a frame not aligned with the axes) leaves two copies of it an
+    // ulp apart: the plane through x and that edge would point anywhere and cut shadows at
+    // random. An edge that short bounds nothing (its neighbours' planes close the pyramid).
+    if (!((b - a).norm() > 1e-9 * (a - x).norm())) continue;
+    Eigen::Vector3d normal = (a - x).cross(b - x);
     if (normal.squaredNorm() == 0.0) continue;
     if (normal.dot(centroid - x) < 0.0) normal = -normal;
     pyramid.push_back({normal.x(), normal.y(), normal.z(), -normal.dot(x)});

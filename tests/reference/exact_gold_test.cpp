@@ -2,6 +2,8 @@
 // closed forms, the dense stratified gold, symmetry, and a much tighter run of itself.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <array>
 
 #include <cmath>
@@ -274,6 +276,74 @@ TEST(ExactVisibility, RingsWithRepeatedVerticesOverlapAsTheirShapesDo) {
   }
   EXPECT_FALSE(convexRingsOverlap(square, apart));
   EXPECT_FALSE(convexRingsOverlap(apart, square));
+}
+
+TEST(ExactVisibility, ASharedEdgeGivesTheSameVisibleIntegralsInAnyFrame) {
+  // A floor receiver and a wall source meeting along an edge, a box face standing on the
+  // floor, its top, and a shelf touching the wall. In the frame of the axes the source's
+  // corners on the shared edge lie exactly on every receiver point's tangent plane; turned
+  // and moved, they lie on it up to rounding, and the clip of the source leaves a corner
+  // twice, an ulp apart. The visible integrals do not depend on the frame: at degrees 0 and
+  // 2 every value of a turned frame must match the axes' frame.
+  const Eigen::Vector3d receiverO(0, 0, 0), receiverU(1, 0, 0), receiverV(0, 1, 0);
+  const Eigen::Vector3d sourceO(0, 1, 0), sourceU(1, 0, 0), sourceV(0, 0, 1);  // normal -y
+  const std::vector<std::array<Eigen::Vector3d, 3>> occluders = {
+      {Eigen::Vector3d(0.2, 0.7, 0.0), Eigen::Vector3d(0.4, 0, 0), Eigen::Vector3d(0, 0, 0.3)},
+      {Eigen::Vector3d(0.2, 0.7, 0.3), Eigen::Vector3d(0.4, 0, 0), Eigen::Vector3d(0, 0.2, 0)},
+      {Eigen::Vector3d(0.5, 1.0, 0.2), Eigen::Vector3d(0.4, 0, 0), Eigen::Vector3d(0, -0.2, 0)}};
+  struct Values {
+    double formFactor = 0.0;
+    std::array<double, 9> quadratic{};
+  };
+  auto evaluate = [&](const Eigen::Matrix3d& turn, const Eigen::Vector3d& shift,
+                      const Eigen::Vector3d& point) {
+    OccluderScene scene;
+    for (const auto& o : occluders) {
+      scene.addParallelogram(Patch::make(turn * o[0] + shift, turn * o[1], turn * o[2], "o"));
+    }
+    scene.commit();
+    const Patch receiver =
+        Patch::make(turn * receiverO + shift, turn * receiverU, turn * receiverV, "receiver");
+    const Patch source =
+        Patch::make(turn * sourceO + shift, turn * sourceU, turn * sourceV, "source");
+    const Link link{receiver, source, &scene};
+    const Eigen::Vector3d x = turn * point + shift;
+    ExactVisibility visibility(link);
+    VisibleRings rings;
+    visibility.visibleRings(x, rings);
+    Values values;
+    values.formFactor = SourceMoments(source, 0).formFactor(x, receiver.normal, rings);
+    SourceMoments(source, 2).compute(x, receiver.normal, rings, values.quadratic.data());
+    return values;
+  };
+  std::mt19937_64 random(1);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 600; ++trial) {
+    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
+    q.normalize();
+    const Eigen::Matrix3d turn = q.toRotationMatrix();
+    const Eigen::Vector3d shift(3 * uniform(random) - 1.5, 3 * uniform(random) - 1.5,
+                                3 * uniform(random) - 1.5);
+    // Every third point close to the shared edge (y = 1), down to 1e-7 from it.
+    const double u = uniform(random);
+    const double v = trial % 3 == 0 ? 1.0 - std::pow(10.0, -1.0 - 6.0 * uniform(random))
+                                    : uniform(random);
+    const Eigen::Vector3d point(u, v, 0.0);
+    const Values axes = evaluate(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), point);
+    const Values turned = evaluate(turn, shift, point);
+    ASSERT_TRUE(std::isfinite(turned.formFactor));
+    double difference = std::fabs(axes.formFactor - turned.formFactor);
+    for (int k = 0; k < 9; ++k) {
+      ASSERT_TRUE(std::isfinite(turned.quadratic[std::size_t(k)]));
+      difference = std::max(difference, std::fabs(axes.quadratic[std::size_t(k)] -
+                                                  turned.quadratic[std::size_t(k)]));
+    }
+    EXPECT_LT(difference, 1e-8) << "trial " << trial << " at (" << u << ", " << v << ")";
+    worst = std::max(worst, difference);
+  }
+  RecordProperty("worst_difference", std::to_string(worst));
 }
 
 TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
