@@ -195,71 +195,75 @@ TEST(SourceMoments, PolarMethodReproducesLambertsFormula) {
   }
 }
 
+// The unit receiver at z = 0 seen from its centre x, and the unit source facing it at z = 1.
+// Occluders halfway between them and parallel to both cast shadows that are the occluders
+// scaled by 2 about x's foot, so the visible form factor follows from closed-form
+// point-to-rectangle form factors by inclusion and exclusion: no ring, no union, no clipping.
+struct HalfwaySetup {
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  const Eigen::Vector3d x{0.5, 0.5, 0.0}, n{0, 0, 1};
+
+  // The form factor from x to the rectangle [x0, x1] x [y0, y1] of the source's plane,
+  // facing the receiver as the source does.
+  double toRectangle(double x0, double x1, double y0, double y1) const {
+    return pointToPatchFormFactor(
+        x, n, Patch::make({x0, y1, 1}, {x1 - x0, 0, 0}, {0, y0 - y1, 0}, "shadow"));
+  }
+  double toSource() const { return pointToPatchFormFactor(x, n, source); }
+
+  // What x sees of the source past `scene`'s occluders, by the exact visibility and
+  // Lambert's formula; `unions` and `rings` report how it was formed.
+  double visibleFormFactor(const OccluderScene& scene, std::size_t& unions,
+                           std::size_t& rings) const {
+    const Link link{receiver, source, &scene};
+    ExactVisibility visibility(link);
+    VisibleRings visible;
+    visibility.visibleRings(x, visible);
+    unions = visibility.statistics().unions;
+    rings = visible.count();
+    return SourceMoments(source, 0).formFactor(x, n, visible);
+  }
+};
+
 TEST(ExactVisibility, OverlappingAndSeparateShadowsLeaveWhatInclusionExclusionLeaves) {
-  // Three square occluders halfway between a receiver point and a unit source, parallel to
-  // both: their shadows are the squares scaled by 2 about the point's foot. Two shadows
-  // overlap (Clipper's union), the third overlaps neither (counted as it is). The visible
-  // form factor is the source's minus the shadows' by inclusion and exclusion, each from the
-  // closed-form point-to-rectangle form factor: no ring, no union, no clipping.
+  // Three square occluders halfway: two shadows overlap (Clipper's union), the third
+  // overlaps neither (counted as it is).
   OccluderScene scene;
   scene.addParallelogram(Patch::make({0.30, 0.30, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "a"));
   scene.addParallelogram(Patch::make({0.40, 0.35, 0.5}, {0.10, 0, 0}, {0, 0.15, 0}, "b"));
   scene.addParallelogram(Patch::make({0.55, 0.55, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "c"));
   scene.commit();
-  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
-  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
-  const Link link{receiver, source, &scene};
-  const Eigen::Vector3d x(0.5, 0.5, 0.0), n(0, 0, 1);
-  // A rectangle [x0, x1] x [y0, y1] of the source's plane, facing the receiver as it does.
-  auto onSource = [](double x0, double x1, double y0, double y1) {
-    return Patch::make({x0, y1, 1}, {x1 - x0, 0, 0}, {0, y0 - y1, 0}, "shadow");
-  };
-  const double expected = pointToPatchFormFactor(x, n, source) -
-                          pointToPatchFormFactor(x, n, onSource(0.1, 0.4, 0.1, 0.4)) -
-                          pointToPatchFormFactor(x, n, onSource(0.3, 0.5, 0.2, 0.5)) +
-                          pointToPatchFormFactor(x, n, onSource(0.3, 0.4, 0.2, 0.4)) -
-                          pointToPatchFormFactor(x, n, onSource(0.6, 0.9, 0.6, 0.9));
-  ExactVisibility visibility(link);
-  VisibleRings rings;
-  visibility.visibleRings(x, rings);
-  EXPECT_EQ(visibility.statistics().unions, 1u);
-  EXPECT_EQ(rings.count(), 3u);  // the source, the separate shadow, the union of the others
-  const SourceMoments moments(source, 0);
-  EXPECT_NEAR(moments.formFactor(x, n, rings), expected, 1e-12);
-  EXPECT_LT(expected, 0.9 * pointToPatchFormFactor(x, n, source));
+  const HalfwaySetup setup;
+  const double expected = setup.toSource() - setup.toRectangle(0.1, 0.4, 0.1, 0.4) -
+                          setup.toRectangle(0.3, 0.5, 0.2, 0.5) +
+                          setup.toRectangle(0.3, 0.4, 0.2, 0.4) -
+                          setup.toRectangle(0.6, 0.9, 0.6, 0.9);
+  std::size_t unions = 0, rings = 0;
+  EXPECT_NEAR(setup.visibleFormFactor(scene, unions, rings), expected, 1e-12);
+  EXPECT_EQ(unions, 1u);
+  EXPECT_EQ(rings, 3u);  // the source, the separate shadow, the union of the others
+  EXPECT_LT(expected, 0.9 * setup.toSource());
 }
 
 TEST(ExactVisibility, OccluderVertexOnAPyramidPlaneIsSubtractedOnce) {
-  // Occluder a has a vertex exactly on the pyramid plane through the receiver point and the
-  // source's edge X = 0, and the next vertex outside it: the clip repeats that vertex, and
-  // a's shadow ring has an edge of length zero. Such an edge is no separating axis: a's
-  // shadow lies inside b's, which overlaps d's. As in the test above, the occluders lie
-  // halfway and parallel to the source, so every shadow is its occluder scaled by 2 about
-  // the point's foot, and the visible form factor is the source's minus b's and d's shadows
-  // by inclusion and exclusion of closed-form point-to-rectangle form factors (a hides
-  // nothing that b does not).
+  // Occluder a has a vertex exactly on the pyramid plane through x and the source's edge
+  // X = 0, and the next vertex outside it: the clip repeats that vertex, and a's shadow ring
+  // has an edge of length zero. Such an edge is no separating axis: a's shadow lies inside
+  // b's, which overlaps d's, so the visible form factor is the source's minus b's and d's
+  // shadows (a hides nothing that b does not).
   OccluderScene scene;
   scene.addParallelogram(Patch::make({0.25, 0.36, 0.5}, {-0.05, 0.03, 0}, {0.10, 0.03, 0}, "a"));
   scene.addParallelogram(Patch::make({0.25, 0.30, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "b"));
   scene.addParallelogram(Patch::make({0.35, 0.40, 0.5}, {0.10, 0, 0}, {0, 0.10, 0}, "d"));
   scene.commit();
-  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
-  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
-  const Link link{receiver, source, &scene};
-  const Eigen::Vector3d x(0.5, 0.5, 0.0), n(0, 0, 1);
-  auto onSource = [](double x0, double x1, double y0, double y1) {
-    return Patch::make({x0, y1, 1}, {x1 - x0, 0, 0}, {0, y0 - y1, 0}, "shadow");
-  };
-  const double expected = pointToPatchFormFactor(x, n, source) -
-                          pointToPatchFormFactor(x, n, onSource(0.0, 0.3, 0.1, 0.4)) -
-                          pointToPatchFormFactor(x, n, onSource(0.2, 0.4, 0.3, 0.5)) +
-                          pointToPatchFormFactor(x, n, onSource(0.2, 0.3, 0.3, 0.4));
-  ExactVisibility visibility(link);
-  VisibleRings rings;
-  visibility.visibleRings(x, rings);
-  EXPECT_EQ(visibility.statistics().unions, 1u);
-  const SourceMoments moments(source, 0);
-  EXPECT_NEAR(moments.formFactor(x, n, rings), expected, 1e-12);
+  const HalfwaySetup setup;
+  const double expected = setup.toSource() - setup.toRectangle(0.0, 0.3, 0.1, 0.4) -
+                          setup.toRectangle(0.2, 0.4, 0.3, 0.5) +
+                          setup.toRectangle(0.2, 0.3, 0.3, 0.4);
+  std::size_t unions = 0, rings = 0;
+  EXPECT_NEAR(setup.visibleFormFactor(scene, unions, rings), expected, 1e-12);
+  EXPECT_EQ(unions, 1u);
 }
 
 TEST(ExactVisibility, RingsWithRepeatedVerticesOverlapAsTheirShapesDo) {
