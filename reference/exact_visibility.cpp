@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace radquad {
 namespace {
@@ -16,22 +17,44 @@ constexpr double kApexMargin = 1e-12;
 
 }  // namespace
 
+double planeSlack(const Eigen::Vector3d& normal, double offset, double reach) {
+  return 64.0 * std::numeric_limits<double>::epsilon() *
+         (normal.lpNorm<1>() * reach + std::abs(offset));
+}
+
+double polygonReach(const std::vector<Eigen::Vector3d>& polygon) {
+  double reach = 0.0;
+  for (const auto& p : polygon) reach = std::max(reach, p.lpNorm<Eigen::Infinity>());
+  return reach;
+}
+
 void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
-                       double offset, std::vector<Eigen::Vector3d>& out) {
+                       double offset, double slack, std::vector<Eigen::Vector3d>& out) {
   out.clear();
   const std::size_t n = polygon.size();
   if (n == 0) return;
-  double previousHeight = normal.dot(polygon[n - 1]) + offset;
+  // A height within the slack is rounding: the vertex lies on the plane, is kept, and is
+  // never the end of a crossing (so no vertex comes out twice).
+  auto heightOf = [&](const Eigen::Vector3d& p) {
+    const double height = normal.dot(p) + offset;
+    return std::abs(height) <= slack ? 0.0 : height;
+  };
+  double previousHeight = heightOf(polygon[n - 1]);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& previous = polygon[(i + n - 1) % n];
     const Eigen::Vector3d& current = polygon[i];
-    const double height = normal.dot(current) + offset;
-    if ((previousHeight >= 0.0) != (height >= 0.0)) {
+    const double height = heightOf(current);
+    if ((previousHeight > 0.0 && height < 0.0) || (previousHeight < 0.0 && height > 0.0)) {
       out.push_back(previous + (previousHeight / (previousHeight - height)) * (current - previous));
     }
     if (height >= 0.0) out.push_back(current);
     previousHeight = height;
   }
+}
+
+void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
+                       double offset, std::vector<Eigen::Vector3d>& out) {
+  clipConvexPolygon(polygon, normal, offset, planeSlack(normal, offset, polygonReach(polygon)), out);
 }
 
 std::vector<Eigen::Vector4d> convexHullPlanes(const std::vector<Eigen::Vector3d>& points) {
@@ -140,7 +163,10 @@ ExactVisibility::ExactVisibility(const Link& link) : link_(link) {
       }
       if (outside) break;
     }
-    if (!outside) candidates_.push_back(polygon);
+    if (!outside) {
+      candidates_.push_back(polygon);
+      candidateReach_.push_back(polygonReach(polygon));
+    }
   }
   statistics_.candidateOccluders = candidates_.size();
 }
@@ -154,7 +180,9 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   // S': the source clipped to the half-space in front of x's tangent plane.
   const auto corners = source.corners();
   clipA_.assign(corners.begin(), corners.end());
-  clipConvexPolygon(clipA_, nr, -nr.dot(x), clipB_);
+  clipConvexPolygon(clipA_, nr, -nr.dot(x),
+                    planeSlack(nr, -nr.dot(x), std::max(polygonReach(clipA_), x.lpNorm<Eigen::Infinity>())),
+                    clipB_);
   if (clipB_.size() < 3) return;
   std::swap(front_, clipB_);
   const std::vector<Eigen::Vector3d>& front = front_;
@@ -195,25 +223,33 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   // The shadows, in storage kept from point to point (shadows_[0, shadowCount)).
   std::size_t shadowCount = 0;
   shadowBounds_.clear();
-  // The side of a pyramid plane that clipConvexPolygon keeps.
-  auto inside = [](const Eigen::Vector4d& plane, const Eigen::Vector3d& p) {
-    return plane.head<3>().dot(p) + plane[3] >= 0.0;
-  };
-  for (const auto& polygon : candidates_) {
-    const bool rejected = std::any_of(pyramid.begin(), pyramid.end(), [&](const auto& plane) {
-      return std::none_of(polygon.begin(), polygon.end(),
-                          [&](const auto& p) { return inside(plane, p); });
-    });
+  // The side of a pyramid plane that clipConvexPolygon keeps: a vertex within the plane's
+  // rounding slack lies on it (an occluder lying on the source, in a frame not aligned with
+  // the axes, has its vertices at +-1e-17 from the source's plane: it is kept whole).
+  for (std::size_t c = 0; c < candidates_.size(); ++c) {
+    const std::vector<Eigen::Vector3d>& polygon = candidates_[c];
+    slack_.clear();
+    for (const auto& plane : pyramid) {
+      slack_.push_back(planeSlack(plane.head<3>(), plane[3], candidateReach_[c]));
+    }
+    slack_[1] = 0.0;  // the cut below the apex keeps every projection's depth positive
+    auto inside = [&](std::size_t k, const Eigen::Vector3d& p) {
+      return pyramid[k].head<3>().dot(p) + pyramid[k][3] >= -slack_[k];
+    };
+    bool rejected = false;
+    for (std::size_t k = 0; k < pyramid.size() && !rejected; ++k) {
+      rejected = std::none_of(polygon.begin(), polygon.end(),
+                              [&](const auto& p) { return inside(k, p); });
+    }
     if (rejected) continue;
     clipA_ = polygon;
-    for (const auto& plane : pyramid) {
+    for (std::size_t k = 0; k < pyramid.size(); ++k) {
       // Most planes cut no occluder: one with every vertex inside is left as it is (the clip
       // would return the same vertices in the same order).
-      if (std::all_of(clipA_.begin(), clipA_.end(),
-                      [&](const auto& p) { return inside(plane, p); })) {
+      if (std::all_of(clipA_.begin(), clipA_.end(), [&](const auto& p) { return inside(k, p); })) {
         continue;
       }
-      clipConvexPolygon(clipA_, plane.head<3>(), plane[3], clipB_);
+      clipConvexPolygon(clipA_, pyramid[k].head<3>(), pyramid[k][3], slack_[k], clipB_);
       std::swap(clipA_, clipB_);
       if (clipA_.size() < 3) break;
     }

@@ -83,18 +83,33 @@ class ExactVisibility {
   const Link& link_;
   Eigen::Vector3d dualU_, dualV_;  // (y - origin) . dualU = u for y in the source's plane
   std::vector<std::vector<Eigen::Vector3d>> candidates_;
+  std::vector<double> candidateReach_;  // polygonReach of each candidate
   ExactVisibilityStatistics statistics_;
   // Scratch.
   std::vector<Eigen::Vector3d> clipA_, clipB_, front_;
   std::vector<Eigen::Vector4d> pyramid_;
+  std::vector<double> slack_;  // the pyramid planes' slacks for one candidate
   std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
   std::vector<Eigen::Vector4d> shadowBounds_;
   std::vector<char> overlaps_;  // per shadow: whether it overlaps another
   ClipperLib::Paths clipperPaths_, clipperUnion_;
 };
 
+// The rounding of a height normal . p + offset over points p whose coordinates are at most
+// `reach` in magnitude: 64 ulps of the terms' sizes. Heights within it are taken as 0.
+double planeSlack(const Eigen::Vector3d& normal, double offset, double reach);
+
+// The largest coordinate magnitude of a polygon's vertices.
+double polygonReach(const std::vector<Eigen::Vector3d>& polygon);
+
 // Sutherland-Hodgman clip of a convex polygon (as a vertex list) to the half-space
 // plane(p) >= 0 with plane(p) = normal . p + offset; `out` receives the clipped polygon.
+// A vertex whose height is within `slack` of 0 lies on the plane: it is kept, and no
+// crossing is made at it, so no vertex is repeated, and a polygon lying in the plane up to
+// rounding is kept whole (not cut along lines set by rounding). Without `slack`, the
+// polygon's planeSlack.
+void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
+                       double offset, double slack, std::vector<Eigen::Vector3d>& out);
 void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
                        double offset, std::vector<Eigen::Vector3d>& out);
 

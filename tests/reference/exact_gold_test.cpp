@@ -350,6 +350,55 @@ TEST(ExactVisibility, ASharedEdgeGivesTheSameVisibleIntegralsInAnyFrame) {
   RecordProperty("worst_difference", std::to_string(worst));
 }
 
+TEST(ExactVisibility, AnOccluderLyingOnTheSourceHidesWhatItCoversInAnyFrame) {
+  // A rectangle lying in the source's plane (either way up) and covering part of it hides
+  // that part: what x sees is the source's form factor minus the covered rectangle's (closed
+  // forms). In a turned and moved frame the rectangle's corners lie on the source's plane
+  // only up to rounding; its shadow must still be the whole covered part, not a piece cut
+  // along lines set by rounding.
+  const HalfwaySetup setup;  // source at z = 1 over X, Y in [0, 1], facing down
+  const double covered = setup.toSource() - setup.toRectangle(0.2, 0.6, 0.55, 1.0);
+  std::mt19937_64 random(7);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 400; ++trial) {
+    Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    if (trial > 0) {
+      Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
+      turn = q.normalized().toRotationMatrix();
+      shift = {3 * uniform(random) - 1.5, 3 * uniform(random) - 1.5, 3 * uniform(random) - 1.5};
+    }
+    // X in [0.2, 0.6], Y in [0.55, 1.3]: it reaches past the source's edge Y = 1.
+    const bool up = trial % 2 == 0;
+    const Patch rug = up ? Patch::make(turn * Eigen::Vector3d(0.2, 0.55, 1) + shift,
+                                       turn * Eigen::Vector3d(0.4, 0, 0),
+                                       turn * Eigen::Vector3d(0, 0.75, 0), "rug")
+                         : Patch::make(turn * Eigen::Vector3d(0.2, 1.3, 1) + shift,
+                                       turn * Eigen::Vector3d(0.4, 0, 0),
+                                       turn * Eigen::Vector3d(0, -0.75, 0), "rug");
+    OccluderScene scene;
+    scene.addParallelogram(rug);
+    scene.commit();
+    const Patch receiver = Patch::make(turn * setup.receiver.origin + shift,
+                                       turn * setup.receiver.edgeU, turn * setup.receiver.edgeV,
+                                       "receiver");
+    const Patch source = Patch::make(turn * setup.source.origin + shift,
+                                     turn * setup.source.edgeU, turn * setup.source.edgeV, "source");
+    const Link link{receiver, source, &scene};
+    ExactVisibility visibility(link);
+    VisibleRings rings;
+    const Eigen::Vector3d x = turn * setup.x + shift;
+    visibility.visibleRings(x, rings);
+    const double seen = SourceMoments(source, 0).formFactor(x, receiver.normal, rings);
+    EXPECT_NEAR(seen, covered, 1e-10) << "trial " << trial << (up ? " (rug facing up)" : "");
+    worst = std::max(worst, std::fabs(seen - covered));
+  }
+  EXPECT_LT(covered, 0.9 * setup.toSource());
+  RecordProperty("worst_difference", std::to_string(worst));
+}
+
 TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
   const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
   const Patch facing = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
