@@ -30,6 +30,32 @@ std::vector<Eigen::Vector3d> cornersOf(const Patch& patch) {
   return {corners.begin(), corners.end()};
 }
 
+// A random rotation (a normalized quaternion of four normal draws) and a shift of up to 1.5 on
+// each axis (three uniform draws), drawn in that order.
+struct RigidMotion {
+  Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+
+  Eigen::Vector3d point(const Eigen::Vector3d& p) const { return turn * p + shift; }
+  Patch patch(const Eigen::Vector3d& origin, const Eigen::Vector3d& edgeU,
+              const Eigen::Vector3d& edgeV, const char* name) const {
+    return Patch::make(point(origin), turn * edgeU, turn * edgeV, name);
+  }
+  Patch patch(const Patch& p, const char* name) const {
+    return patch(p.origin, p.edgeU, p.edgeV, name);
+  }
+};
+
+RigidMotion randomMotion(std::mt19937_64& random, std::normal_distribution<double>& normal,
+                         std::uniform_real_distribution<double>& unit) {
+  Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
+  q.normalize();
+  RigidMotion motion;
+  motion.turn = q.toRotationMatrix();
+  motion.shift = {3 * unit(random) - 1.5, 3 * unit(random) - 1.5, 3 * unit(random) - 1.5};
+  return motion;
+}
+
 // The dense stratified gold (an independent, random method) and the exact gold agree within
 // 5 of the dense gold's standard errors on every coefficient. The standard error comes from
 // R = 64 replicates, so a correct gold's deviation over it follows Student's t with 63 degrees
@@ -299,19 +325,14 @@ TEST(ExactVisibility, ASharedEdgeGivesTheSameVisibleIntegralsInAnyFrame) {
     double formFactor = 0.0;
     std::array<double, 9> quadratic{};
   };
-  auto evaluate = [&](const Eigen::Matrix3d& turn, const Eigen::Vector3d& shift,
-                      const Eigen::Vector3d& point) {
+  auto evaluate = [&](const RigidMotion& motion, const Eigen::Vector3d& point) {
     OccluderScene scene;
-    for (const auto& o : occluders) {
-      scene.addParallelogram(Patch::make(turn * o[0] + shift, turn * o[1], turn * o[2], "o"));
-    }
+    for (const auto& o : occluders) scene.addParallelogram(motion.patch(o[0], o[1], o[2], "o"));
     scene.commit();
-    const Patch receiver =
-        Patch::make(turn * receiverO + shift, turn * receiverU, turn * receiverV, "receiver");
-    const Patch source =
-        Patch::make(turn * sourceO + shift, turn * sourceU, turn * sourceV, "source");
+    const Patch receiver = motion.patch(receiverO, receiverU, receiverV, "receiver");
+    const Patch source = motion.patch(sourceO, sourceU, sourceV, "source");
     const Link link{receiver, source, &scene};
-    const Eigen::Vector3d x = turn * point + shift;
+    const Eigen::Vector3d x = motion.point(point);
     ExactVisibility visibility(link);
     VisibleRings rings;
     visibility.visibleRings(x, rings);
@@ -325,18 +346,14 @@ TEST(ExactVisibility, ASharedEdgeGivesTheSameVisibleIntegralsInAnyFrame) {
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   double worst = 0.0;
   for (int trial = 0; trial < 600; ++trial) {
-    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
-    q.normalize();
-    const Eigen::Matrix3d turn = q.toRotationMatrix();
-    const Eigen::Vector3d shift(3 * uniform(random) - 1.5, 3 * uniform(random) - 1.5,
-                                3 * uniform(random) - 1.5);
+    const RigidMotion motion = randomMotion(random, normal, uniform);
     // Every third point close to the shared edge (y = 1), down to 1e-7 from it.
     const double u = uniform(random);
     const double v = trial % 3 == 0 ? 1.0 - std::pow(10.0, -1.0 - 6.0 * uniform(random))
                                     : uniform(random);
     const Eigen::Vector3d point(u, v, 0.0);
-    const Values axes = evaluate(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), point);
-    const Values turned = evaluate(turn, shift, point);
+    const Values axes = evaluate(RigidMotion{}, point);
+    const Values turned = evaluate(motion, point);
     ASSERT_TRUE(std::isfinite(turned.formFactor));
     double difference = std::fabs(axes.formFactor - turned.formFactor);
     for (int k = 0; k < 9; ++k) {
@@ -363,33 +380,20 @@ TEST(ExactVisibility, AnOccluderLyingOnTheSourceHidesWhatItCoversInAnyFrame) {
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   double worst = 0.0;
   for (int trial = 0; trial < 400; ++trial) {
-    Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-    if (trial > 0) {
-      Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
-      turn = q.normalized().toRotationMatrix();
-      shift = {3 * uniform(random) - 1.5, 3 * uniform(random) - 1.5, 3 * uniform(random) - 1.5};
-    }
+    const RigidMotion motion = trial > 0 ? randomMotion(random, normal, uniform) : RigidMotion{};
     // X in [0.2, 0.6], Y in [0.55, 1.3]: it reaches past the source's edge Y = 1.
     const bool up = trial % 2 == 0;
-    const Patch rug = up ? Patch::make(turn * Eigen::Vector3d(0.2, 0.55, 1) + shift,
-                                       turn * Eigen::Vector3d(0.4, 0, 0),
-                                       turn * Eigen::Vector3d(0, 0.75, 0), "rug")
-                         : Patch::make(turn * Eigen::Vector3d(0.2, 1.3, 1) + shift,
-                                       turn * Eigen::Vector3d(0.4, 0, 0),
-                                       turn * Eigen::Vector3d(0, -0.75, 0), "rug");
+    const Patch rug = up ? motion.patch({0.2, 0.55, 1}, {0.4, 0, 0}, {0, 0.75, 0}, "rug")
+                         : motion.patch({0.2, 1.3, 1}, {0.4, 0, 0}, {0, -0.75, 0}, "rug");
     OccluderScene scene;
     scene.addParallelogram(rug);
     scene.commit();
-    const Patch receiver = Patch::make(turn * setup.receiver.origin + shift,
-                                       turn * setup.receiver.edgeU, turn * setup.receiver.edgeV,
-                                       "receiver");
-    const Patch source = Patch::make(turn * setup.source.origin + shift,
-                                     turn * setup.source.edgeU, turn * setup.source.edgeV, "source");
+    const Patch receiver = motion.patch(setup.receiver, "receiver");
+    const Patch source = motion.patch(setup.source, "source");
     const Link link{receiver, source, &scene};
     ExactVisibility visibility(link);
     VisibleRings rings;
-    const Eigen::Vector3d x = turn * setup.x + shift;
+    const Eigen::Vector3d x = motion.point(setup.x);
     visibility.visibleRings(x, rings);
     const double seen = SourceMoments(source, 0).formFactor(x, receiver.normal, rings);
     EXPECT_NEAR(seen, covered, 1e-10) << "trial " << trial << (up ? " (rug facing up)" : "");
