@@ -1,17 +1,14 @@
 #include "reference/exact_gold.h"
 
-#include <cubature.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <cmath>
 #include <functional>
 #include <thread>
-#include <unordered_map>
 #include <vector>
 
 #include "kernel/input_error.h"
@@ -22,6 +19,7 @@
 #include "reference/exact_visibility.h"
 #include "reference/adaptive_pieces.h"
 #include "reference/gauss_kronrod.h"
+#include "reference/genz_malik.h"
 #include "reference/source_moments.h"
 
 namespace radquad {
@@ -95,98 +93,20 @@ struct OuterIntegrand {
   }
 };
 
-// The inner integrals of the points a Genz-Malik run computed, for the runs that repeat it at
-// a quarter of its tolerance: a repeat starts again from the whole square and halves its
-// regions the same way, so most of the points it asks for are the earlier runs' points, to
-// the last bit. Their inner integrals are looked up instead of computed again, and they are
-// the same either way (a point's inner integrals depend on the point alone, not on the
-// thread or on the points before it). At most `capacity` points are kept (their storage
-// taken at once): the runs that are repeated took fewer than minEvaluations points each.
-class PointCache {
- public:
-  PointCache(std::size_t capacity, int functions)
-      : capacity_(capacity), functions_(std::size_t(functions)) {
-    index_.reserve(capacity);
-    stored_.reserve(capacity * functions_);
-  }
-
-  // The stored inner integrals of (s, t), or nullptr.
-  const double* find(double s, double t) const {
-    if (capacity_ == 0) return nullptr;
-    const auto it = index_.find(keyOf(s, t));
-    return it == index_.end() ? nullptr : stored_.data() + it->second;
-  }
-
-  void add(double s, double t, const double* inner) {
-    if (index_.size() >= capacity_) return;
-    if (!index_.emplace(keyOf(s, t), stored_.size()).second) return;
-    stored_.insert(stored_.end(), inner, inner + functions_);
-  }
-
- private:
-  struct Key {
-    std::uint64_t s, t;
-    bool operator==(const Key&) const = default;
-  };
-  struct Hash {
-    std::size_t operator()(const Key& key) const {
-      return std::hash<std::uint64_t>()(key.s * 0x9E3779B97F4A7C15ull ^ key.t);
-    }
-  };
-  static Key keyOf(double s, double t) {
-    return {std::bit_cast<std::uint64_t>(s), std::bit_cast<std::uint64_t>(t)};
-  }
-  std::size_t capacity_;
-  std::size_t functions_;
-  std::unordered_map<Key, std::size_t, Hash> index_;
-  std::vector<double> stored_;
-};
-
-struct CallbackData {
-  OuterIntegrand* integrand;
-  PointCache* cache;
-  std::uint64_t requested = 0;        // the points asked for, those found in the cache included
-  std::vector<std::size_t> fresh;     // scratch: the batch's points not in the cache
-  std::vector<double> inner;          // scratch: their inner integrals
-  std::vector<double> receiverValues; // scratch: the receiver's functions at a point
-};
-
-// Points are independent: a batch is spread over threads, and the values do not depend on
-// which thread computed them.
-int integrandCallback(unsigned /*dimensions*/, std::size_t count, const double* points, void* data,
-                      unsigned values, double* out) {
-  auto& call = *static_cast<CallbackData*>(data);
-  OuterIntegrand* integrand = call.integrand;
-  const std::size_t functions = std::size_t(integrand->functions);
-  std::vector<std::size_t>& fresh = call.fresh;
-  fresh.clear();
-  call.requested += count;
-  call.receiverValues.resize(functions);
-  for (std::size_t k = 0; k < count; ++k) {
-    const double s = points[2 * k], t = points[2 * k + 1];
-    if (const double* known = call.cache->find(s, t)) {
-      integrand->expand(call.receiverValues.data(), s, t, known, out + k * values);
-    } else {
-      fresh.push_back(k);
-    }
-  }
-  integrand->points += fresh.size();
-  integrand->report(integrand->points);
-  call.inner.resize(fresh.size() * functions);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fresh.size(), 8),
+// Genz-Malik's batch (genz_malik.h): the points are independent, so a batch is spread over
+// threads, and the values do not depend on which thread computed them.
+void evaluateBatch(OuterIntegrand& integrand, std::size_t count, const double* points, double* out) {
+  const std::size_t values = std::size_t(integrand.functions * integrand.functions);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 8),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      Worker& worker = integrand->workers.local();
-                      for (std::size_t f = range.begin(); f < range.end(); ++f) {
-                        const std::size_t k = fresh[f];
-                        integrand->evaluate(worker, points[2 * k], points[2 * k + 1],
-                                            out + k * values, call.inner.data() + f * functions);
+                      Worker& worker = integrand.workers.local();
+                      for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                        integrand.evaluate(worker, points[2 * k], points[2 * k + 1],
+                                           out + k * values);
                       }
                     });
-  for (std::size_t f = 0; f < fresh.size(); ++f) {
-    const std::size_t k = fresh[f];
-    call.cache->add(points[2 * k], points[2 * k + 1], call.inner.data() + f * functions);
-  }
-  return integrand->finite() ? 0 : 1;
+  integrand.points += count;
+  integrand.report(integrand.points);
 }
 
 // The outer integral as iterated adaptive Gauss-Kronrod (gauss_kronrod.h) with the critical segments
@@ -385,52 +305,28 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const unsigned values = unsigned(integrand.functions * integrand.functions);
   std::vector<double> value(values), error(values);
   ExactGold gold;
-  std::uint64_t requestedPoints = 0;
+  // Genz-Malik's own estimate (its embedded degree-5 rule) cannot see what no point of a
+  // region samples, such as a thin shadow between its points: started from the whole square,
+  // a run at the study's 3e-4 stopped early on 1 of 24 of the study's partial links at each
+  // degree with an actual error 2.4 (degree 0) and 1.4 (degree 2) times its estimate
+  // (tests/reference/gold_honesty_test.cpp, against critical-line golds at 1e-7). Started
+  // from 8 x 8 regions (1,088 points), none failed, the worst actual error 0.16 and 0.33 of
+  // the estimate; 4 x 4 and 2 x 2 passed too on those links, and 8 x 8 costs about as many
+  // points as they do at 3e-4 (2,300 and 3,500 a link on average, against 1,800 and 3,400).
   auto genzMalik = [&] {
-    // Genz-Malik's estimate (its embedded degree-5 rule) can miss what a run of few regions
-    // never samples, a thin shadow between its points: at a tolerance of 1e-4, 4 of 84 of the
-    // study's occluded links stopped after 17 to 800 points with an actual error 2 to 40
-    // times the estimate (against 1e-8 golds). A run that stops before minEvaluations points
-    // is repeated at a quarter of its tolerance (at most 5 times, and only while the budget
-    // left holds minEvaluations points); the last run that met its tolerance is the result.
-    // (The retries sample more regions; the inner integrals keep the accuracy the requested
-    // tolerance asked for, a hundredth of it.)
-    // The rounds and the budget count the points the runs asked for, repeats included (as
-    // many as they would compute without the cache); integrand.points, those computed.
-    double tolerance = options.tolerance;
-    std::vector<double> runValue(values), runError(values);
-    PointCache cache(options.reuseRepeatedPoints ? 2 * options.minEvaluations : 0,
-                     integrand.functions);
-    CallbackData call{&integrand, &cache, 0, {}, {}, {}};
-    for (int round = 0;; ++round) {
-      const std::uint64_t before = call.requested;
-      const double low[2] = {0.0, 0.0}, high[2] = {1.0, 1.0};
-      // hcubature may overshoot its budget by a region's points: what is left is never
-      // allowed to wrap around (a repeat starts only while minEvaluations are left).
-      const int status = hcubature_v(values, integrandCallback, &call, 2, low, high,
-                                     options.maxEvaluations - before, 0.0, tolerance, ERROR_LINF,
-                                     runValue.data(), runError.data());
-      if (!integrand.finite()) {
-        throw ComputationError("exact gold: the inner integral was not finite");
-      }
-      if (status != 0) throw ComputationError("exact gold: the cubature failed");
-      double largestValue = 0.0, largestError = 0.0;
-      for (unsigned v = 0; v < values; ++v) {
-        largestValue = std::max(largestValue, std::abs(runValue[v]));
-        largestError = std::max(largestError, runError[v]);
-      }
-      const bool met = largestError <= tolerance * largestValue;
-      if (round == 0 || met) {
-        value = runValue;
-        error = runError;
-      }
-      if (!met || call.requested - before >= options.minEvaluations || round == 5 ||
-          call.requested + options.minEvaluations > options.maxEvaluations) {
-        break;
-      }
-      tolerance *= 0.25;
-    }
-    requestedPoints = call.requested;
+    GenzMalikOptions genz;
+    genz.tolerance = options.tolerance;
+    genz.initialGrid = options.initialGrid;
+    genz.maxEvaluations = options.maxEvaluations;
+    const GenzMalikResult run = genzMalik2d(
+        values,
+        [&](std::size_t count, const double* points, double* out) {
+          evaluateBatch(integrand, count, points, out);
+        },
+        genz);
+    if (!integrand.finite()) throw ComputationError("exact gold: the inner integral was not finite");
+    value = run.value;
+    error = run.error;
   };
   bool lines = options.outer == ExactOuterMethod::criticalLines;
   if (lines) {
@@ -450,7 +346,6 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     if (lines) {
       cubature.run(value, error);
       integrand.points = cubature.points();
-      requestedPoints = integrand.points;
       if (!integrand.finite()) {
         throw ComputationError("exact gold: the inner integral was not finite");
       }
@@ -473,7 +368,6 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const double largest = gold.coupling.cwiseAbs().maxCoeff();
   gold.converged = gold.couplingError.maxCoeff() <= options.tolerance * largest;
   gold.receiverPoints = integrand.points;
-  gold.requestedPoints = requestedPoints;
   // Every worker culled the same shaft: read the count from one instead of culling again.
   for (const Worker& worker : integrand.workers) {
     gold.polygonUnions += worker.visibility.statistics().unions;

@@ -17,8 +17,8 @@
 //     grid costs 15 x 15 points per cell (about the square of the segments' count): when
 //     that floor exceeds maxFloorPoints, the link takes
 //   - Genz-Malik: the degree-7 rule with its embedded degree-5 rule as the error estimate
-//     (hcubature from libcubature), bisecting the region of largest error; blind to the
-//     segments, it resolves them algebraically.
+//     (genz_malik.h), from a grid of initialGrid^2 regions, bisecting the regions of largest
+//     error; blind to the segments, it resolves them algebraically.
 // Both stop when the estimated error of every coefficient is at most `tolerance` times K's
 // largest entry, or when the evaluation budget is spent (then converged = false). No random
 // numbers: the same link gives the same bits, whatever the number of threads (lines, or the
@@ -41,15 +41,12 @@ enum class ExactOuterMethod { criticalLines, genzMalik };
 
 struct ExactGoldOptions {
   double tolerance = 1e-7;             // estimated error / max |K| entry
-  // The budget of receiver points (each an exact inner integral); Genz-Malik counts the
-  // points its runs ask for, those looked up again included.
+  // The budget of receiver points (each an exact inner integral).
   std::size_t maxEvaluations = 4000000;
-  // Genz-Malik: a run that meets the tolerance in fewer receiver points is repeated at a
-  // quarter of it (exact_gold.cpp says why).
-  std::size_t minEvaluations = 4000;
-  // Genz-Malik: a repeat looks up the points the earlier runs computed instead of computing
-  // them again (the same values; false only to measure what that saves).
-  bool reuseRepeatedPoints = true;
+  // Genz-Malik starts from a grid of initialGrid x initialGrid regions (genz_malik.h): no
+  // part of the square is judged from fewer points, so a shadow thinner than the space
+  // between a large region's points is not missed (exact_gold.cpp says how 8 was chosen).
+  int initialGrid = 8;
   ExactOuterMethod outer = ExactOuterMethod::criticalLines;
   // Critical lines: the share of the tolerance left to the inner (t) integrals, and the
   // receiver points one line may take.
@@ -78,7 +75,6 @@ struct ExactGold {
   double formFactorError = 0.0;
   bool converged = false;
   std::uint64_t receiverPoints = 0;   // outer evaluations: receiver points computed
-  std::uint64_t requestedPoints = 0;  // the points the outer cubature asked for, repeats included
   std::uint64_t polygonUnions = 0;    // receiver points whose shadows overlapped
   std::size_t candidateOccluders = 0;  // occluder polygons in the link's shaft
   std::size_t criticalSegments = 0;    // critical lines: segments on the receiver
