@@ -9,7 +9,8 @@
 // {method, form_factor, coupling, error = {kind, form_factor, coupling}, converged,
 // kernel_evaluations, and gauss_points, tolerance, lambert_check (Gauss) or tolerance,
 // receiver_points, shaft_occluders, outer_method, critical_segments (exact visibility)} and `reference_minus_gold` = {form_factor,
-// max_abs_coupling, form_factor_in_standard_errors}.
+// max_abs_coupling, form_factor_in_standard_errors}. A gold that does not reach its tolerance
+// within its budget is printed too, and the exit status is 3.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "experiments/json_input.h"
 #include "experiments/link_reports.h"
 #include "experiments/trace_report.h"
+#include "kernel/input_error.h"
 #include "reference/gold_reference.h"
 #include "reference/stratified_reference.h"
 
@@ -55,7 +57,15 @@ void runReference(ReferenceCommandOptions options) {
   report.replicates = options.replicates;
   report.gold = options.gold;
   report.goldOptions = goldOptions;
-  std::cout << referenceReport(description, report, options.linkPath, &std::cerr).dump(2) << "\n";
+  const nlohmann::json out = referenceReport(description, report, options.linkPath, &std::cerr);
+  std::cout << out.dump(2) << "\n";
+  if (out.contains("gold") && !out["gold"]["converged"].get<bool>()) {
+    // The JSON (with "converged": false) still goes to stdout for diagnosis; exit status 3.
+    char tolerance[32];
+    std::snprintf(tolerance, sizeof tolerance, "%g", options.goldTolerance);
+    throw ComputationError(options.linkPath + ": the gold did not reach its tolerance (" +
+                           tolerance + ") within its evaluation budget");
+  }
 }
 
 }  // namespace

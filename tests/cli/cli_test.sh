@@ -225,6 +225,15 @@ check slow_gold_progress $?
   >"$scratch/slow_quiet.json" 2>"$scratch/slow_quiet.err"
 [ ! -s "$scratch/slow_quiet.err" ] && cmp -s "$scratch/slow.json" "$scratch/slow_quiet.json"
 check slow_gold_quiet $?
+# A gold that cannot reach its tolerance within its budget (1e-15 on the same link, about
+# 8 s): its JSON, converged false, on stdout for diagnosis, the failure on stderr, status 3.
+"$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-15 --quiet \
+  >"$scratch/unconverged.json" 2>"$scratch/unconverged.err"
+[ $? -eq 3 ] && grep -q "three_blockers_link.json: the gold did not reach its tolerance (1e-15)" \
+  "$scratch/unconverged.err" &&
+  "$python" -c 'import json, sys; assert json.load(open(sys.argv[1]))["gold"]["converged"] is False' \
+  "$scratch/unconverged.json"
+check unconverged_gold $?
 expect_error bad_triangle "occluders[0].triangle: expected an array of 3 points" link "$fixtures/bad_triangle.json" --rule FullGauss
 
 # Rules from files: `rules --dump` writes a rule, `File:PATH` reads it back, and the link's

@@ -419,6 +419,35 @@ TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
   EXPECT_NEAR(touching.formFactor, expected, 2e-7 * expected);
 }
 
+TEST(ExactGold, AWallStandingOnTheReceiverTakesTheCriticalLinesAndMatchesTheClosedForm) {
+  // A wall standing on the receiver along x = 0.5, taller than the source is high: points on
+  // its left see none of the source (which lies right of it), points on its right all of it.
+  // The inner integral jumps along the wall's foot, where Genz-Malik converges slowly; the
+  // critical lines take the foot as a breakpoint. With a floor limit that would send the
+  // link to Genz-Malik, it still takes the lines, and F = 1/2 F(right half -> source).
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0.5, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  ExactGoldOptions options;
+  options.maxFloorPoints = 100;  // the jump raises it to 100 x 100 at 1e-7
+  const std::vector<Eigen::Vector3d> half = {{0.5, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.5, 1, 0}};
+  const double expected = 0.5 * analytic::polygonToPolygonFormFactor(half, cornersOf(source));
+  for (double foot : {0.0, 0.02}) {
+    SCOPED_TRACE(foot);
+    OccluderScene scene;
+    scene.addParallelogram(Patch::make({0.5, -0.2, foot}, {0, 1.4, 0}, {0, 0, 1.5}, "wall"));
+    scene.commit();
+    const ExactGold gold = exactGold(Link{receiver, source, &scene}, 0, options);
+    if (foot == 0.0) {
+      EXPECT_EQ(gold.outer, ExactOuterMethod::criticalLines);
+      EXPECT_TRUE(gold.converged);
+      EXPECT_NEAR(gold.formFactor, expected, 1e-7 * expected + gold.formFactorError);
+    } else {
+      // Lifted off the receiver, the wall's shadow moves continuously: Genz-Malik.
+      EXPECT_EQ(gold.outer, ExactOuterMethod::genzMalik);
+    }
+  }
+}
+
 TEST(GoldReference, LinksWhoseKernelIsNotSmoothGoStraightToTheExactGold) {
   // Sharing an edge at right angles (singular along it), and a source cut by the receiver's
   // plane (the clamped cosine's discontinuity): the Gauss sequence would end unconverged at
