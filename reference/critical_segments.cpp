@@ -184,4 +184,43 @@ std::vector<double> crossingsAt(const std::vector<ReceiverSegment>& segments, do
   return breaks;
 }
 
+std::vector<ReceiverSegment> contactSegments(
+    const Patch& receiver, const std::vector<std::vector<Eigen::Vector3d>>& occluders) {
+  const Eigen::Vector3d& nr = receiver.normal;
+  const double offset = -nr.dot(receiver.origin);
+  std::vector<ReceiverSegment> segments;
+  std::vector<Eigen::Vector3d> front, on;
+  for (const auto& polygon : occluders) {
+    // The part in front of the receiver's plane; its vertices within the clip's slack of the
+    // plane are where it meets the plane (none above it: it lies in the plane, or behind).
+    clipConvexPolygon(polygon, nr, offset, front);
+    const double slack = planeSlack(nr, offset, polygonReach(polygon));
+    on.clear();
+    bool above = false;
+    for (const auto& p : front) {
+      if (std::abs(nr.dot(p) + offset) <= slack) {
+        on.push_back(p);
+      } else {
+        above = true;
+      }
+    }
+    if (!above || on.size() < 2) continue;
+    // The convex polygon meets the plane in the segment between its two farthest points.
+    std::size_t a = 0, b = 0;
+    for (std::size_t i = 0; i < on.size(); ++i) {
+      for (std::size_t j = i + 1; j < on.size(); ++j) {
+        if ((on[i] - on[j]).squaredNorm() > (on[a] - on[b]).squaredNorm()) a = i, b = j;
+      }
+    }
+    const Eigen::Vector2d p = receiver.parametersOf(on[a]), q = receiver.parametersOf(on[b]);
+    const double length = (q - p).norm();
+    if (!(length > 0.0)) continue;
+    LineInterval interval;
+    interval.low = 0.0;
+    interval.high = length;
+    clipToSquare(ParameterLine{p, (q - p) / length}, interval, segments);
+  }
+  return segments;
+}
+
 }  // namespace radquad

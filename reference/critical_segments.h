@@ -35,6 +35,13 @@ std::vector<ReceiverSegment> criticalSegments(
     const Patch& receiver, const Patch& source,
     const std::vector<std::vector<Eigen::Vector3d>>& occluders);
 
+// Where an occluder meets the receiver along a segment (it stands on the receiver or passes
+// through it), in (s, t), clipped to the unit square. On either side of such a segment the
+// occluder hides a different half of what lies beyond its plane, so the inner integral
+// jumps there (criticalSegments has the segment, on its occluder's plane line).
+std::vector<ReceiverSegment> contactSegments(
+    const Patch& receiver, const std::vector<std::vector<Eigen::Vector3d>>& occluders);
+
 // The t of every segment crossing the line s = const (segments along t excluded: they are
 // breakpoints of the outer integral), with 0 and 1.
 std::vector<double> crossingsAt(const std::vector<ReceiverSegment>& segments, double s);

@@ -291,75 +291,6 @@ class CriticalLineCubature {
   std::uint64_t points_ = 0;
 };
 
-// Whether an occluder meets the receiver along a segment of positive length inside it (it
-// stands on the receiver or passes through it). On either side of that segment the occluder
-// hides a different half of what lies beyond its plane, so the inner integral jumps there:
-// Genz-Malik's error then falls only as fast as the regions along the segment shrink, about
-// as 1 / points, while the critical lines take the segment (the occluder's plane line) as a
-// breakpoint.
-bool occluderMeetsReceiver(const Patch& receiver,
-                           const std::vector<std::vector<Eigen::Vector3d>>& occluders) {
-  const Eigen::Vector3d& n = receiver.normal;
-  const double offset = -n.dot(receiver.origin);
-  // (s, t) of a point on the receiver's plane.
-  const double uu = receiver.edgeU.squaredNorm(), uv = receiver.edgeU.dot(receiver.edgeV),
-               vv = receiver.edgeV.squaredNorm(), det = uu * vv - uv * uv;
-  auto parameters = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector3d d = p - receiver.origin;
-    const double du = d.dot(receiver.edgeU), dv = d.dot(receiver.edgeV);
-    return Eigen::Vector2d((vv * du - uv * dv) / det, (uu * dv - uv * du) / det);
-  };
-  for (const auto& polygon : occluders) {
-    const double slack = planeSlack(n, offset, polygonReach(polygon));
-    std::vector<Eigen::Vector3d> on;  // the polygon's points on the plane
-    bool above = false, below = false;
-    for (std::size_t k = 0; k < polygon.size(); ++k) {
-      const Eigen::Vector3d& a = polygon[k];
-      const Eigen::Vector3d& b = polygon[(k + 1) % polygon.size()];
-      double ha = n.dot(a) + offset, hb = n.dot(b) + offset;
-      if (std::abs(ha) <= slack) ha = 0.0;
-      if (std::abs(hb) <= slack) hb = 0.0;
-      above = above || ha > 0.0;
-      below = below || ha < 0.0;
-      if (ha == 0.0) on.push_back(a);
-      if ((ha < 0.0 && hb > 0.0) || (ha > 0.0 && hb < 0.0)) on.push_back(a + (ha / (ha - hb)) * (b - a));
-    }
-    if (on.size() < 2 || (!above && !below)) continue;  // apart, or lying in the plane
-    // The convex polygon meets the plane in the segment between its two farthest points.
-    Eigen::Vector2d p = parameters(on[0]), q = p;
-    double longest = 0.0;
-    for (const auto& x : on) {
-      for (const auto& y : on) {
-        const double length = (x - y).norm();
-        if (length > longest) {
-          longest = length;
-          p = parameters(x);
-          q = parameters(y);
-        }
-      }
-    }
-    // Clip p + lambda (q - p), lambda in [0, 1], to the open unit square (Liang-Barsky).
-    double low = 0.0, high = 1.0;
-    const Eigen::Vector2d d = q - p;
-    bool outside = false;
-    for (int axis = 0; axis < 2 && !outside; ++axis) {
-      for (const double bound : {0.0, 1.0}) {
-        const double towards = bound == 0.0 ? -d[axis] : d[axis];
-        const double room = bound == 0.0 ? p[axis] : 1.0 - p[axis];
-        if (towards == 0.0) {
-          if (room <= 0.0) outside = true;
-        } else if (towards > 0.0) {
-          high = std::min(high, room / towards);
-        } else {
-          low = std::max(low, room / towards);
-        }
-      }
-    }
-    if (!outside && (high - low) * d.norm() > 1e-9) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 const char* exactOuterMethodName(ExactOuterMethod method) {
@@ -411,10 +342,11 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     const double floorLimit =
         double(degree == 0 ? options.maxFloorPoints : options.maxFloorPointsHigherDegrees);
     double threshold = floorLimit * std::sqrt(1e-7 / options.tolerance);
-    // Where the inner integral jumps (occluderMeetsReceiver), Genz-Malik's points grow as
-    // 1 / tolerance: at 1e-7 it does not converge in 4,000,000 points on such study links,
-    // where the critical lines do in 140,000 to 440,000.
-    if (occluderMeetsReceiver(link.receiver, integrand.workers.local().visibility.candidates())) {
+    // Where the inner integral jumps (contactSegments), Genz-Malik's error falls only as fast
+    // as its regions along the jump shrink, its points as 1 / tolerance: at 1e-7 it did not
+    // converge in 4,000,000 points on such study links, where the critical lines, which take
+    // the jump as a breakpoint, did in 140,000 to 440,000.
+    if (!contactSegments(link.receiver, integrand.workers.local().visibility.candidates()).empty()) {
       threshold = std::max(threshold, 100.0 * floorLimit * (1e-7 / options.tolerance));
     }
     lines = double(cubature.floorPoints()) <= threshold;

@@ -226,7 +226,6 @@ GenzMalikResult genzMalik2d(std::size_t values, const BatchIntegrand& evaluate,
     fresh = false;
   }
   if (!result.converged) sumAll();
-  result.regions = regions.size();
   return result;
 }
 

@@ -33,7 +33,6 @@ struct GenzMalikResult {
   std::vector<double> value;
   std::vector<double> error;
   std::uint64_t points = 0;
-  std::size_t regions = 0;
   bool converged = false;
 };
 

@@ -135,6 +135,32 @@ void expectOuterMethodsAgree(const Link& link, int degree) {
   }
 }
 
+TEST(CriticalSegments, AnOccluderMeetingTheReceiverGivesItsContactSegment) {
+  const Patch receiver = Patch::make({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, "receiver");
+  auto contacts = [&](const Patch& occluder) {
+    const auto corners = occluder.corners();
+    return contactSegments(receiver, {{corners.begin(), corners.end()}});
+  };
+  // A wall standing on the receiver along x = 1, longer than it: s = 0.5, t from 0 to 1.
+  const auto standing = contacts(Patch::make({1, -0.5, 0}, {0, 2, 0}, {0, 0, 1}, "wall"));
+  ASSERT_EQ(standing.size(), 1u);
+  EXPECT_NEAR(standing[0].a.x(), 0.5, 1e-15);
+  EXPECT_NEAR(standing[0].b.x(), 0.5, 1e-15);
+  EXPECT_NEAR(std::fabs(standing[0].b.y() - standing[0].a.y()), 1.0, 1e-15);
+  // A tilted panel passing through it, crossing the plane along y = 0.05 + 0.4 * 0.2 / 0.8 = 0.15
+  // for x in [0.4, 1.2].
+  const auto crossing = contacts(Patch::make({0.4, 0.05, -0.2}, {0.8, 0, 0}, {0, 0.4, 0.8}, "panel"));
+  ASSERT_EQ(crossing.size(), 1u);
+  EXPECT_NEAR(std::fabs(crossing[0].b.x() - crossing[0].a.x()), 0.4, 1e-15);
+  EXPECT_NEAR(crossing[0].a.y(), 0.15, 1e-15);
+  EXPECT_NEAR(crossing[0].b.y(), 0.15, 1e-15);
+  // None: lifted off the receiver, standing outside it, lying in its plane, or behind it.
+  EXPECT_TRUE(contacts(Patch::make({1, 0.2, 0.01}, {0, 0.5, 0}, {0, 0, 1}, "lifted")).empty());
+  EXPECT_TRUE(contacts(Patch::make({3, 0.2, 0}, {0, 0.5, 0}, {0, 0, 1}, "outside")).empty());
+  EXPECT_TRUE(contacts(Patch::make({0.5, 0.2, 0}, {0.5, 0, 0}, {0, 0.5, 0}, "rug")).empty());
+  EXPECT_TRUE(contacts(Patch::make({1, 0.2, 0}, {0, 0.5, 0}, {0, 0, -1}, "below")).empty());
+}
+
 TEST(CriticalLines, AgreeWithGenzMalikOnOccludedLinks) {
   const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
   const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
