@@ -145,17 +145,20 @@ void philoxBlocks(PhiloxKey key, std::uint32_t stream, std::uint32_t first, std:
   }
 }
 
-void philoxUniformQuads(PhiloxKey key, std::uint32_t stream, std::uint32_t firstPoint,
-                        std::size_t count, double* __restrict w01, double* __restrict w23,
-                        double* __restrict w45, double* __restrict w67) {
-  // Four vectors per step: even and odd blocks of points p..p+7 and of p+8..p+15.
+namespace {
+
+// philoxUniformQuads for the points `pointAt(i)`, i = 0..count-1 (a contiguous range or a
+// list): sixteen points per step, their even and odd blocks in four vectors.
+template <class PointLanes>
+void uniformQuads(PhiloxKey key, std::uint32_t stream, std::size_t count,
+                  const PointLanes& pointLanes, double* __restrict w01, double* __restrict w23,
+                  double* __restrict w45, double* __restrict w67) {
   constexpr int G = 4;
   constexpr std::size_t kStep = 2 * kBlockLanes;
   for (std::size_t p = 0; p < count; p += kStep) {
     BlockLanes c[4][G];
     for (int half = 0; half < 2; ++half) {
-      const BlockLanes point = BlockLanes{0, 1, 2, 3, 4, 5, 6, 7} +
-                               std::uint32_t(firstPoint + p + std::size_t(half) * kBlockLanes);
+      const BlockLanes point = pointLanes(p + std::size_t(half) * kBlockLanes);
       for (int odd = 0; odd < 2; ++odd) {
         setCounters(c, 2 * half + odd, BlockLanes{}, stream);
         c[0][2 * half + odd] = std::uint32_t(2) * point + std::uint32_t(odd);
@@ -173,6 +176,35 @@ void philoxUniformQuads(PhiloxKey key, std::uint32_t stream, std::uint32_t first
       storeLanes(w67 + start, uniformLanes(c[2][odd], c[3][odd]), lanes);
     }
   }
+}
+
+}  // namespace
+
+void philoxUniformQuads(PhiloxKey key, std::uint32_t stream, std::uint32_t firstPoint,
+                        std::size_t count, double* __restrict w01, double* __restrict w23,
+                        double* __restrict w45, double* __restrict w67) {
+  uniformQuads(
+      key, stream, count,
+      [firstPoint](std::size_t i) {
+        return BlockLanes{0, 1, 2, 3, 4, 5, 6, 7} + std::uint32_t(firstPoint + i);
+      },
+      w01, w23, w45, w67);
+}
+
+void philoxUniformQuadsAt(PhiloxKey key, std::uint32_t stream, const std::uint32_t* points,
+                          std::size_t count, double* __restrict w01, double* __restrict w23,
+                          double* __restrict w45, double* __restrict w67) {
+  uniformQuads(
+      key, stream, count,
+      [points, count](std::size_t i) {
+        // Lanes past the list repeat its last point (computed, never stored).
+        BlockLanes lanes;
+        for (int lane = 0; lane < kBlockLanes; ++lane) {
+          lanes[lane] = points[std::min(i + std::size_t(lane), count - 1)];
+        }
+        return lanes;
+      },
+      w01, w23, w45, w67);
 }
 
 std::uint32_t PhiloxStream::nextWord() {

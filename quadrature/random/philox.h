@@ -44,6 +44,10 @@ void philoxBlocks(PhiloxKey key, std::uint32_t stream, std::uint32_t first, std:
 void philoxUniformQuads(PhiloxKey key, std::uint32_t stream, std::uint32_t firstPoint,
                         std::size_t count, double* w01, double* w23, double* w45, double* w67);
 
+// The same for a list of points: point points[i] (each below 2^31) gives w01[i] .. w67[i].
+void philoxUniformQuadsAt(PhiloxKey key, std::uint32_t stream, const std::uint32_t* points,
+                          std::size_t count, double* w01, double* w23, double* w45, double* w67);
+
 // A double in [0,1) from 53 random bits: (hi:lo >> 11) 2^-53.
 inline double uniformFromWords(std::uint32_t hi, std::uint32_t lo) {
   const std::uint64_t bits = (std::uint64_t(hi) << 32) | lo;

@@ -1,6 +1,7 @@
 // The random rules: their stratification, their reproducibility and their unbiasedness.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <set>
@@ -81,22 +82,31 @@ std::vector<std::string> randomRuleNames() {
 // The reproducibility contract of Stratified:k written out with scalar code: cell
 // c = ((i_s k + i_t) k + i_u) k + i_v takes its jitter from Philox blocks 2c and 2c+1 of
 // stream randomStream("Stratified Monte Carlo", 0) under the seed's key, point = min((i + uniform) / k, 1 - 2^-53) per axis.
-// The rule's samples and its stream (any range of cells) must give exactly these points.
+// Point p is cell p for odd k; for even k, p = 16 b + j lies in the cell with digits
+// 2 b_x + (bit x of j), b's digits in base k / 2 (stratified.h).
+// The rule's samples and its stream (any range of points) must give exactly these points.
+std::array<std::size_t, 4> documentedDigits(std::size_t p, std::size_t k) {
+  if (k % 2 != 0) return {p / (k * k * k), p / (k * k) % k, p / k % k, p % k};
+  const std::size_t h = k / 2, b = p / 16, j = p % 16;
+  return {2 * (b / (h * h * h)) + (j >> 3 & 1), 2 * (b / (h * h) % h) + (j >> 2 & 1),
+          2 * (b / h % h) + (j >> 1 & 1), 2 * (b % h) + (j & 1)};
+}
+
 TEST(Stratified, PointsFollowTheDocumentedStreamAndTheStreamMatchesTheSamples) {
-  for (const auto& [name, k] :
-       {std::pair{"Stratified", 3}, {"Stratified:7", 7}, {"Reference", 10}}) {
+  for (const auto& [name, k] : {std::pair{"Stratified", 3}, {"Stratified:7", 7},
+                                {"Reference", 10}, {"Stratified:16", 16}, {"Stratified:2", 2}}) {
     const auto rule = findRule(name);
     const std::uint64_t seed = 0x5eed0000ull + std::uint64_t(k);
     const RuleSamples samples = rule->samples(seed);
     const std::size_t count = samples.size();
     const double below = std::nextafter(1.0, 0.0);
-    for (std::size_t c = 0; c < count; ++c) {
+    for (std::size_t p = 0; p < count; ++p) {
+      const std::array<std::size_t, 4> digits = documentedDigits(p, std::size_t(k));
+      const std::size_t c = ((digits[0] * k + digits[1]) * k + digits[2]) * k + digits[3];
       const std::uint32_t stream = randomStream("Stratified Monte Carlo", 0);
       const PhiloxCounter even = philox4x32({std::uint32_t(2 * c), 0, stream, 0}, philoxKey(seed));
       const PhiloxCounter odd =
           philox4x32({std::uint32_t(2 * c + 1), 0, stream, 0}, philoxKey(seed));
-      const std::size_t digits[4] = {c / std::size_t(k * k * k), c / std::size_t(k * k) % k,
-                                     c / std::size_t(k) % k, c % std::size_t(k)};
       const double jitter[4] = {uniformFromWords(even[0], even[1]),
                                 uniformFromWords(even[2], even[3]),
                                 uniformFromWords(odd[0], odd[1]), uniformFromWords(odd[2], odd[3])};
@@ -104,7 +114,7 @@ TEST(Stratified, PointsFollowTheDocumentedStreamAndTheStreamMatchesTheSamples) {
                                samples.points.u.data(), samples.points.v.data()};
       for (int axis = 0; axis < 4; ++axis) {
         const double expected = std::min((double(digits[axis]) + jitter[axis]) * (1.0 / k), below);
-        ASSERT_EQ(axes[axis][c], expected) << name << " cell " << c << " axis " << axis;
+        ASSERT_EQ(axes[axis][p], expected) << name << " point " << p << " axis " << axis;
       }
     }
     const auto points = rule->pointStream(seed);
