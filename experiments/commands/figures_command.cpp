@@ -105,6 +105,12 @@ void runFigures(const FiguresOptions& options) {
     }
   }
   plotting.finish();
+  // Every table and plot is written; a table whose golds fell short fails the run (status 3).
+  for (std::size_t k = 0; k < tables.size(); ++k) {
+    if (const int unconverged = unconvergedGolds(tables[k]); unconverged > 0) {
+      throw unconvergedGoldError(results / (std::string(figures[k]) + ".json"), unconverged);
+    }
+  }
 }
 
 }  // namespace

@@ -60,8 +60,14 @@ void addStudyCommand(CLI::App& app) {
     study.progress = !options->quiet;
     std::optional<tbb::global_control> threadLimit;
     options->overrides.limitThreads(threadLimit);
-    runStudyToFile(readStudyConfigWith(options->configPath, overrides), options->configPath,
-                   options->outPath, study, options->linksOutPath);
+    const nlohmann::json table =
+        runStudyToFile(readStudyConfigWith(options->configPath, overrides), options->configPath,
+                       options->outPath, study, options->linksOutPath);
+    // The table stays written (complete, the golds that fell short marked), but the run
+    // failed: status 3.
+    if (const int unconverged = unconvergedGolds(table); unconverged > 0) {
+      throw unconvergedGoldError(options->outPath, unconverged);
+    }
   });
 }
 

@@ -218,6 +218,21 @@ StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
   return config;
 }
 
+int unconvergedGolds(const nlohmann::json& table) {
+  const auto gold = table.find("gold");
+  if (gold == table.end()) return 0;
+  return gold->value("unconverged_links", 0);
+}
+
+ComputationError unconvergedGoldError(const std::filesystem::path& table, int count) {
+  return ComputationError(
+      table.string() + ": the gold of " + std::to_string(count) +
+      (count == 1 ? " link" : " links") +
+      " did not reach its tolerance within its evaluation budget (the table is written, with "
+      "gold.unconverged_links; --links-out lists each link's gold.converged): its scores "
+      "are measured against a gold less accurate than asked");
+}
+
 nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::path& configPath,
                               const std::filesystem::path& outPath, const StudyOptions& options,
                               const std::filesystem::path& linksOutPath) {

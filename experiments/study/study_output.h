@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "experiments/study/study_runner.h"
+#include "kernel/input_error.h"
 
 namespace radquad {
 
@@ -92,6 +93,13 @@ struct StudyOverrides {
 // naming an unknown one) before anything is computed.
 StudyConfig readStudyConfigWith(const std::filesystem::path& configPath,
                                 const StudyOverrides& overrides);
+
+// The links of `table` whose gold did not reach its tolerance (gold.unconverged_links; 0
+// without a gold).
+int unconvergedGolds(const nlohmann::json& table);
+
+// The ComputationError of a table written with `count` unconverged golds: names the table.
+ComputationError unconvergedGoldError(const std::filesystem::path& table, int count);
 
 // Runs `config` (read from `configPath`, which the table records) and writes the table to
 // `outPath` (atomically), its run record ({"elapsed_seconds"}, writeRunRecord) and, when

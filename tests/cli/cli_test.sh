@@ -234,6 +234,20 @@ check slow_gold_quiet $?
   "$python" -c 'import json, sys; assert json.load(open(sys.argv[1]))["gold"]["converged"] is False' \
   "$scratch/unconverged.json"
 check unconverged_gold $?
+# A study whose exact golds are asked for 1e-9 within 1,000 receiver points: the table is
+# written (complete, the short golds counted), the failure named on stderr, status 3.
+cat >"$scratch/short_gold.json" <<'JSON'
+{"figure": "fig1", "seed": 3, "classes": {"partial": 2}, "rules": ["FullGauss"],
+ "geometry": {"occluders": ["one_blocker"]},
+ "gold": {"max_evaluations": 1000, "exact_tolerance": 1e-9}}
+JSON
+"$radquad" study "$scratch/short_gold.json" --out "$scratch/short_gold_table.json" --quiet \
+  2>"$scratch/short_gold.err"
+[ $? -eq 3 ] && grep -q "short_gold_table.json: the gold of [0-9]* links\? did not reach its tolerance" \
+  "$scratch/short_gold.err" &&
+  "$python" -c 'import json, sys; assert json.load(open(sys.argv[1]))["gold"]["unconverged_links"] >= 1' \
+  "$scratch/short_gold_table.json"
+check study_unconverged_gold $?
 expect_error bad_triangle "occluders[0].triangle: expected an array of 3 points" link "$fixtures/bad_triangle.json" --rule FullGauss
 
 # Rules from files: `rules --dump` writes a rule, `File:PATH` reads it back, and the link's
