@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "kernel/input_error.h"
@@ -417,6 +418,43 @@ TEST(ExactGold, ParallelAndPerpendicularSquaresMatchTheirClosedForms) {
   EXPECT_TRUE(touching.converged);
   const double expected = analytic::perpendicularRectangles(1, 1, 1);
   EXPECT_NEAR(touching.formFactor, expected, 2e-7 * expected);
+}
+
+TEST(ExactGold, ARugLyingOnTheReceiverHidesNothing) {
+  // A rectangle lying in the receiver's plane (either way up, partly past its edge) is seen
+  // edge-on from every receiver point: it hides nothing, and the gold is the unoccluded one
+  // (degree 0: the closed form; degree 2: the exact gold without occluders), whichever outer
+  // integration it takes.
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  const ExactGold open2 = exactGold(Link{receiver, source, nullptr}, 2);
+  ASSERT_TRUE(open2.converged);
+  for (bool up : {true, false}) {
+    OccluderScene scene;
+    scene.addParallelogram(up ? Patch::make({0.2, 0.3, 0}, {0.5, 0, 0}, {0, 0.9, 0}, "rug")
+                              : Patch::make({0.2, 1.2, 0}, {0.5, 0, 0}, {0, -0.9, 0}, "rug"));
+    scene.commit();
+    const Link link{receiver, source, &scene};
+    for (ExactOuterMethod outer : {ExactOuterMethod::criticalLines, ExactOuterMethod::genzMalik}) {
+      SCOPED_TRACE(std::string(up ? "facing up, " : "facing down, ") + exactOuterMethodName(outer));
+      ExactGoldOptions options;
+      options.outer = outer;
+      const ExactGold gold0 = exactGold(link, 0, options);
+      EXPECT_TRUE(gold0.converged);
+      EXPECT_NEAR(gold0.formFactor, analytic::parallelRectangles(1, 1, 1),
+                  1e-9 + gold0.formFactorError);
+      const ExactGold gold2 = exactGold(link, 2, options);
+      EXPECT_TRUE(gold2.converged);
+      const double largest = open2.coupling.cwiseAbs().maxCoeff();
+      for (int a = 0; a < 9; ++a) {
+        for (int b = 0; b < 9; ++b) {
+          EXPECT_NEAR(gold2.coupling(a, b), open2.coupling(a, b),
+                      gold2.couplingError(a, b) + open2.couplingError(a, b) + 1e-12 * largest)
+              << a << ", " << b;
+        }
+      }
+    }
+  }
 }
 
 TEST(ExactGold, AWallStandingOnTheReceiverTakesTheCriticalLinesAndMatchesTheClosedForm) {
