@@ -5,8 +5,9 @@
 //
 //   build/release/bench/gold_bench --benchmark_min_time=0.05   (one thread; about 10 minutes)
 //
-// Each iteration integrates the same 6 links of one kind (the first 6 candidates whose
-// visible fraction, by a 6^4 Gauss rule, lies in (0.05, 0.95)); the time per link is the
+// Each iteration integrates the same 6 links of one kind (the first 6 candidates of seed 1
+// whose visible fraction, by a 6^4 Gauss rule, lies in (0.05, 0.95):
+// experiments/scenarios/probed_links.h); the time per link is the
 // iteration time / 6. Counters: receiver_points (exact), max_relative_error (the largest
 // reported error over the largest |K| entry; for dense stratified its standard error),
 // by_critical_lines (the share of links whose outer integral took the critical lines; the
@@ -29,10 +30,7 @@
 #include <memory>
 #include <vector>
 
-#include "experiments/scenarios/random_stream.h"
-#include "experiments/scenarios/scenario.h"
-#include "quadrature/prepared_rule.h"
-#include "quadrature/rules/gauss_product.h"
+#include "experiments/scenarios/probed_links.h"
 #include "reference/exact_gold.h"
 #include "reference/gold_reference.h"
 
@@ -41,33 +39,16 @@ namespace {
 
 constexpr int kLinksPerKind = 6;
 
+// The links of one kind and their Link views (probed_links.h, seed 1).
 struct KindLinks {
-  std::vector<GeneratedLink> generated;
-  std::vector<std::unique_ptr<OccluderScene>> scenes;
+  std::vector<ProbedLink> drawn;
   std::vector<Link> links;
 };
 
 KindLinks partialLinks(OccluderKind kind) {
   KindLinks out;
-  const GeometryRanges ranges;
-  const PreparedRule probe(std::make_shared<GaussProductRule>(GaussPointCounts{6, 6, 6, 6}), 0);
-  CouplingAccumulator accumulator;
-  for (std::uint64_t i = 0; out.generated.size() < kLinksPerKind && i < 100000; ++i) {
-    GeneratedLink generated = generateLink(ranges, StudyClass::partial, deriveSeed(1, {1, i, 0}));
-    if (generated.occluderKind != kind) continue;
-    auto scene = generated.occluderScene();
-    const Link link{generated.receiver, generated.source, scene.get()};
-    LinkIntegral probed;
-    probe.integrate(link, 0, accumulator, probed);
-    const double visible = probed.visibleFraction();
-    if (visible <= 0.05 || visible >= 0.95) continue;
-    out.generated.push_back(std::move(generated));
-    out.scenes.push_back(std::move(scene));
-  }
-  for (std::size_t k = 0; k < out.generated.size(); ++k) {
-    out.links.push_back(Link{out.generated[k].receiver, out.generated[k].source,
-                             out.scenes[k].get()});
-  }
+  out.drawn = probedPartialLinks(1, {kind}, kLinksPerKind);
+  for (const ProbedLink& drawn : out.drawn) out.links.push_back(drawn.link());
   return out;
 }
 

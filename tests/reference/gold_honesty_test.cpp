@@ -11,47 +11,11 @@
 #include <memory>
 #include <vector>
 
-#include "experiments/scenarios/scenario.h"
-#include "quadrature/prepared_rule.h"
-#include "quadrature/random/seeds.h"
-#include "quadrature/rules/gauss_product.h"
+#include "experiments/scenarios/probed_links.h"
 #include "reference/exact_gold.h"
 
 namespace radquad {
 namespace {
-
-struct DrawnLink {
-  GeneratedLink generated;
-  std::unique_ptr<OccluderScene> scene;
-  Link link() const { return Link{generated.receiver, generated.source, scene.get()}; }
-};
-
-// The first `perKind` partial links of each kind drawn from `seed` whose visible fraction
-// (a 6^4 Gauss rule) lies in (0.05, 0.95), as the study keeps them.
-std::vector<DrawnLink> studyLinks(std::uint64_t seed, int perKind) {
-  const GeometryRanges ranges;
-  const PreparedRule probe(std::make_shared<GaussProductRule>(GaussPointCounts{6, 6, 6, 6}), 0);
-  CouplingAccumulator accumulator;
-  std::vector<DrawnLink> links;
-  int counts[3] = {0, 0, 0};
-  const OccluderKind kinds[3] = {OccluderKind::oneBlocker, OccluderKind::severalBlockers,
-                                 OccluderKind::slats};
-  for (std::uint64_t i = 0; i < 100000; ++i) {
-    if (std::min({counts[0], counts[1], counts[2]}) >= perKind) break;
-    GeneratedLink generated = generateLink(ranges, StudyClass::partial, deriveSeed(seed, {1, i, 0}));
-    const auto kind = std::find(kinds, kinds + 3, generated.occluderKind) - kinds;
-    if (kind == 3 || counts[kind] >= perKind) continue;
-    DrawnLink drawn{std::move(generated), nullptr};
-    drawn.scene = drawn.generated.occluderScene();
-    LinkIntegral probed;
-    probe.integrate(drawn.link(), 0, accumulator, probed);
-    const double visible = probed.visibleFraction();
-    if (visible <= 0.05 || visible >= 0.95) continue;
-    ++counts[kind];
-    links.push_back(std::move(drawn));
-  }
-  return links;
-}
 
 struct Tally {
   int failures = 0;
@@ -61,7 +25,7 @@ struct Tally {
 };
 
 // The Genz-Malik gold with `options` on every link against `truths`.
-Tally tally(const std::vector<DrawnLink>& links, const std::vector<ExactGold>& truths, int degree,
+Tally tally(const std::vector<ProbedLink>& links, const std::vector<ExactGold>& truths, int degree,
             const ExactGoldOptions& options) {
   Tally out;
   for (std::size_t k = 0; k < links.size(); ++k) {
@@ -87,12 +51,14 @@ TEST(GoldHonesty, GenzMalikErrorEstimatesHoldOnTheStudysLinks) {
   // 24 links (8 of each kind); the truths by the other outer method, the critical lines,
   // whatever their breakpoints cost, at 1e-7 or as near as 600,000 receiver points take
   // them (on two of these links Genz-Malik does not reach 1e-7 in 4,000,000 points).
-  const std::vector<DrawnLink> links = studyLinks(5, 8);
+  // The first 8 partial links of each kind drawn from seed 5, as the study keeps them.
+  const std::vector<ProbedLink> links = probedPartialLinks(
+      5, {OccluderKind::oneBlocker, OccluderKind::severalBlockers, OccluderKind::slats}, 8);
   ASSERT_EQ(links.size(), 24u);
   for (int degree : {0, 2}) {
     SCOPED_TRACE(degree);
     std::vector<ExactGold> truths;
-    for (const DrawnLink& drawn : links) {
+    for (const ProbedLink& drawn : links) {
       ExactGoldOptions tight;
       tight.tolerance = 1e-7;
       tight.maxFloorPoints = tight.maxFloorPointsHigherDegrees = 1ull << 40;
