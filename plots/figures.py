@@ -16,6 +16,7 @@ Tables scored against the gold (the default; not with `--no-gold`) are drawn aga
 scene-derived links (fig1-scene.json, fig2-scene.json, when present) are drawn the same way.
 
 Usage: /usr/bin/python3 plots/figures.py --results results --plots plots [--only fig1 ...]
+       /usr/bin/python3 plots/figures.py --results results --plots plots --serve  (stems on stdin)
 """
 import argparse
 import json
@@ -45,8 +46,10 @@ def save(figure, plots, stem):
     # The tight bounding box is measured once, in the PNG's resolution (what
     # bbox_inches="tight" measures for each file, with a draw of its own), and used for both.
     figure.set_dpi(150)
-    figure.canvas.draw()
-    bbox = figure.get_tightbbox(figure.canvas.get_renderer()).padded(matplotlib.rcParams["savefig.pad_inches"])
+    renderer = figure.canvas.get_renderer()
+    with renderer._draw_disabled():  # lay out every artist, rasterize nothing
+        figure.draw(renderer)
+    bbox = figure.get_tightbbox(renderer).padded(matplotlib.rcParams["savefig.pad_inches"])
     for extension in ("png", "svg"):
         target = os.path.join(plots, f"{stem}.{extension}")
         temporary = target + ".tmp." + extension
@@ -213,6 +216,35 @@ def breakdown_figure(table, plots, stem):
 FIGURES = {"fig1": figure1, "fig2": figure2, "fig1-scene": figure1, "fig2-scene": figure2}
 
 
+def draw(stem, results, plots):
+    table = load(os.path.join(results, stem + ".json"))
+    FIGURES[stem](table, plots, stem)
+    breakdown_figure(table, plots, stem)
+
+
+def serve(results, plots):
+    """Draws the tables whose stems come on standard input, one a line, in turn; answers
+    "drawn STEM" or "failed STEM" on standard output (radquad figures asks while it computes
+    the next table). Exits with status 1 if any failed."""
+    failures = 0
+    for line in sys.stdin:
+        stem = line.strip()
+        if not stem:
+            continue
+        try:
+            if stem not in FIGURES:
+                raise ValueError(f"unknown table {stem!r} (valid: {', '.join(sorted(FIGURES))})")
+            draw(stem, results, plots)
+            answer = "drawn"
+        except (Exception, SystemExit) as error:  # load() exits with its message
+            print(f"figures.py: {stem}: {error}", file=sys.stderr)
+            answer = "failed"
+            failures += 1
+        sys.stdout.write(f"{answer} {stem}\n")
+        sys.stdout.flush()
+    return 1 if failures else 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--results", default="results")
@@ -220,17 +252,20 @@ def main():
     parser.add_argument("--only", action="append", choices=sorted(FIGURES),
                         help="draw this table's figures alone (repeatable; default: every table, "
                         "the scene-derived ones when present)")
+    parser.add_argument("--serve", action="store_true",
+                        help="draw the tables named on standard input, one a line, answering "
+                        "'drawn STEM' or 'failed STEM' on standard output")
     arguments = parser.parse_args()
     os.makedirs(arguments.plots, exist_ok=True)
-    for stem, draw in FIGURES.items():
+    if arguments.serve:
+        sys.exit(serve(arguments.results, arguments.plots))
+    for stem in FIGURES:
         if arguments.only and stem not in arguments.only:
             continue
         path = os.path.join(arguments.results, stem + ".json")
         if stem.endswith("-scene") and not arguments.only and not os.path.exists(path):
             continue
-        table = load(path)
-        draw(table, arguments.plots, stem)
-        breakdown_figure(table, arguments.plots, stem)
+        draw(stem, arguments.results, arguments.plots)
 
 
 if __name__ == "__main__":

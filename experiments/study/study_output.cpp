@@ -1,9 +1,11 @@
 #include "experiments/study/study_output.h"
 
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
@@ -11,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <stdexcept>
 
 #include "experiments/atomic_file.h"
 #include "experiments/rule_file.h"
@@ -96,70 +99,156 @@ std::string waitForChild(int pid) {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : "failed";
 }
 
+std::vector<std::string> scriptWords(const std::string& python, const std::string& script,
+                                     const std::filesystem::path& results,
+                                     const std::filesystem::path& plots) {
+  return {python, (dataRoot() / "plots" / script).string(), "--results", results.string(),
+          "--plots", plots.string()};
+}
+
+void echo(const std::string& commandName, const std::vector<std::string>& words) {
+  std::string echoed;
+  for (const std::string& word : words) {
+    if (!echoed.empty()) echoed += ' ';
+    echoed += shellQuoted(word);
+  }
+  std::cerr << "radquad " << commandName << ": " << echoed << "\n";
+}
+
+// Starts `words` (words[0] looked up on PATH); with standardIo >= 0, that descriptor becomes
+// the child's standard input and output.
+int spawn(const std::vector<std::string>& words, const std::string& script, int standardIo) {
+  std::vector<char*> argv;
+  for (const std::string& word : words) argv.push_back(const_cast<char*>(word.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (standardIo >= 0) {
+    posix_spawn_file_actions_adddup2(&actions, standardIo, 0);
+    posix_spawn_file_actions_adddup2(&actions, standardIo, 1);
+  }
+  pid_t pid = 0;
+  const int error = posix_spawnp(&pid, words[0].c_str(), &actions, nullptr, argv.data(), ::environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) {
+    throw InputError("--python " + words[0] + ": cannot start it for plots/" + script + ": " +
+                     std::strerror(error));
+  }
+  return int(pid);
+}
+
+std::string matplotlibHint(const std::string& python) {
+  return " (is matplotlib installed for " + python + "?)";
+}
+
 }  // namespace
 
 void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet) {
-  BackgroundPlots plotting(python, script, results, plots, commandName, quiet);
-  plotting.start({});
-  plotting.finish();
+  const std::vector<std::string> words = scriptWords(python, script, results, plots);
+  if (!quiet) echo(commandName, words);
+  const std::string why = waitForChild(spawn(words, script, -1));
+  if (why.empty()) return;
+  throw InputError("plots/" + script + " failed" +
+                   (why == "failed" ? matplotlibHint(python) : ": " + why));
 }
 
 BackgroundPlots::BackgroundPlots(std::string python, std::string script,
                                  std::filesystem::path results, std::filesystem::path plots,
                                  std::string commandName, bool quiet)
-    : python_(std::move(python)),
-      script_(std::move(script)),
+    : script_(std::move(script)),
       commandName_(std::move(commandName)),
       results_(std::move(results)),
-      plots_(std::move(plots)),
-      quiet_(quiet) {}
+      quiet_(quiet) {
+  int ends[2];
+  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) {
+    throw std::runtime_error(std::string("cannot connect to plots/") + script_ + ": " +
+                             std::strerror(errno));
+  }
+  std::vector<std::string> words = scriptWords(python, script_, results_, plots);
+  words.push_back("--serve");
+  if (!quiet_) echo(commandName_, words);
+  try {
+    pid_ = spawn(words, script_, ends[1]);
+  } catch (...) {
+    ::close(ends[0]);
+    ::close(ends[1]);
+    throw;
+  }
+  ::close(ends[1]);
+  socket_ = ends[0];
+  python_ = std::move(python);
+}
 
 BackgroundPlots::~BackgroundPlots() {
-  for (const Job& job : running_) waitForChild(job.pid);
+  std::string why;
+  if (pid_ >= 0) close(why);
 }
 
 void BackgroundPlots::start(const std::string& stem) {
-  std::vector<std::string> words = {python_, (dataRoot() / "plots" / script_).string(),
-                                    "--results", results_.string(), "--plots", plots_.string()};
-  if (!stem.empty()) words.insert(words.end(), {"--only", stem});
+  requested_.push_back(stem);
   if (!quiet_) {
-    std::string echoed;
-    for (const std::string& word : words) {
-      if (!echoed.empty()) echoed += ' ';
-      echoed += shellQuoted(word);
+    std::cerr << "radquad " << commandName_ << ": plotting " << (results_ / (stem + ".json")).string()
+              << "\n";
+  }
+  const std::string line = stem + "\n";
+  std::size_t sent = 0;
+  while (sent < line.size()) {
+    // A script that has stopped reading (it failed) is found out by finish().
+    const ssize_t written = send(socket_, line.data() + sent, line.size() - sent, MSG_NOSIGNAL);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) return;
+    sent += std::size_t(written);
+  }
+}
+
+std::string BackgroundPlots::close(std::string& why) {
+  shutdown(socket_, SHUT_WR);
+  std::string answers;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t got = read(socket_, buffer, sizeof buffer);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    answers.append(buffer, std::size_t(got));
+  }
+  ::close(socket_);
+  socket_ = -1;
+  why = waitForChild(pid_);
+  pid_ = -1;
+  std::vector<std::string> drawn;
+  std::size_t begin = 0;
+  while (begin < answers.size()) {
+    std::size_t end = answers.find('\n', begin);
+    if (end == std::string::npos) end = answers.size();
+    const std::string answer = answers.substr(begin, end - begin);
+    begin = end + 1;
+    if (answer.rfind("drawn ", 0) == 0) drawn.push_back(answer.substr(6));
+    if (answer.rfind("failed ", 0) == 0) {
+      if (why.empty()) why = "failed";
+      return answer.substr(7);
     }
-    std::cerr << "radquad " << commandName_ << ": " << echoed << "\n";
   }
-  std::vector<char*> argv;
-  for (const std::string& word : words) argv.push_back(const_cast<char*>(word.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int error = posix_spawnp(&pid, python_.c_str(), nullptr, nullptr, argv.data(), ::environ);
-  if (error != 0) {
-    throw InputError("--python " + python_ + ": cannot start it for plots/" + script_ + ": " +
-                     std::strerror(error));
+  for (const std::string& stem : requested_) {
+    if (std::find(drawn.begin(), drawn.end(), stem) == drawn.end()) {
+      if (why.empty()) why = "it ended without drawing it";
+      if (why == "failed" && drawn.empty()) why = "nothing drawn";
+      return stem;
+    }
   }
-  running_.push_back({int(pid), stem});
+  return "";
 }
 
 void BackgroundPlots::finish() {
-  std::string failed, why;
-  for (const Job& job : running_) {
-    const std::string outcome = waitForChild(job.pid);
-    if (why.empty() && !outcome.empty()) {
-      failed = job.stem;
-      why = outcome;
-    }
-  }
-  running_.clear();
+  std::string why;
+  const std::string failed = close(why);
   if (why.empty()) return;
-  const std::string what =
-      failed.empty() ? "" : " on " + (results_ / (failed + ".json")).string();
+  const std::string what = failed.empty() ? "" : " on " + (results_ / (failed + ".json")).string();
   throw InputError("plots/" + script_ + " failed" + what +
-                   (why == "failed" ? " (is matplotlib installed for " + python_ + "?)"
-                                    : ": " + why));
+                   (why == "nothing drawn" ? matplotlibHint(python_)
+                    : why == "failed"      ? ""
+                                           : ": " + why));
 }
 
 std::filesystem::path runRecordPath(const std::filesystem::path& result) {

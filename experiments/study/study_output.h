@@ -34,16 +34,20 @@ std::string shellQuoted(const std::string& text);
 void checkPlotInterpreter(const std::string& python, const std::string& option);
 
 // Runs `python plots/SCRIPT --results RESULTS --plots PLOTS` from the source tree and waits
-// for it (BackgroundPlots below, with one script over every table). InputError when it fails.
+// for it, echoed on stderr as "radquad COMMAND: ..." unless quiet. InputError when it fails.
 void runPlotScript(const std::string& python, const std::string& script,
                    const std::filesystem::path& results, const std::filesystem::path& plots,
                    const std::string& commandName, bool quiet);
 
-// Plot scripts run in the background, beside the computation that follows: start(stem) runs
-// `python plots/SCRIPT --results RESULTS --plots PLOTS --only STEM` (without `--only` when
-// stem is empty) without waiting, echoed on stderr as "radquad COMMAND: ..." unless quiet;
-// finish() waits for every one started and throws InputError naming the first that failed. The destructor waits for those still
-// running (their outputs are written atomically by the script), without throwing.
+// A plot script drawing tables in the background, beside the computation that follows. The
+// constructor starts `python plots/SCRIPT --results RESULTS --plots PLOTS --serve` (echoed on
+// stderr as "radquad COMMAND: ..." unless quiet), which loads its libraries while the first
+// table is computed and then reads table stems from its standard input, one a line, drawing
+// each table's figures in turn and answering "drawn STEM" or "failed STEM" on its standard
+// output (one socket carries both ways). start(stem) asks for a table without waiting;
+// finish() ends the requests, waits for the script, and throws InputError naming the first
+// table it did not draw. The destructor ends and waits likewise, without throwing (the script
+// writes its outputs atomically).
 class BackgroundPlots {
  public:
   BackgroundPlots(std::string python, std::string script, std::filesystem::path results,
@@ -56,14 +60,17 @@ class BackgroundPlots {
   void finish();
 
  private:
-  struct Job {
-    int pid;
-    std::string stem;
-  };
+  // Closes the requests, reads the answers to the end, waits for the script: "" when every
+  // table asked for was drawn and it exited with status 0; else the stem of the first table
+  // not drawn (or "" if every one was), with `why` saying what went wrong.
+  std::string close(std::string& why);
+
   std::string python_, script_, commandName_;
-  std::filesystem::path results_, plots_;
+  std::filesystem::path results_;
   bool quiet_;
-  std::vector<Job> running_;
+  int pid_ = -1;
+  int socket_ = -1;  // this end of the script's standard input and output
+  std::vector<std::string> requested_;
 };
 
 // The run record of a result file: in its folder, its stem + ".run.json" (results/fig1.json:

@@ -118,8 +118,11 @@ expect_error figures_python "--python /no/such/python: cannot run it" figures --
 cat >"$scratch/failing_python" <<'SH'
 #!/bin/sh
 [ "$1" = "-c" ] && exit 0
-for word in "$@"; do [ "$word" = fig2-scene ] && exit 1; done
-exit 0
+status=0
+while read -r stem; do
+  if [ "$stem" = fig2-scene ]; then echo "failed $stem"; status=1; else echo "drawn $stem"; fi
+done
+exit $status
 SH
 chmod +x "$scratch/failing_python"
 expect_error figures_plot_fails "plots/figures.py failed on $scratch/fig_results/fig2-scene.json" figures --quick --quiet --no-gold --rules FullGauss,Stratified,MonteCarlo,NRook --python "$scratch/failing_python" --results "$scratch/fig_results" --plots "$scratch/fig_plots"
@@ -128,6 +131,15 @@ for table in fig1 fig2 fig1-scene fig2-scene claims; do
   [ -s "$scratch/fig_results/$table.json" ] || { echo "figures_plot_fails: $table.json missing"; missing=1; }
 done
 check figures_plot_fails_kept_the_tables $missing
+# An interpreter that stops before drawing anything (its matplotlib cannot draw) names the
+# first table and says what to check.
+cat >"$scratch/dying_python" <<'SH'
+#!/bin/sh
+[ "$1" = "-c" ] && exit 0
+exit 1
+SH
+chmod +x "$scratch/dying_python"
+expect_error figures_plot_dies "plots/figures.py failed on $scratch/fig_results2/fig1-scene.json (is matplotlib installed for $scratch/dying_python?)" figures --quick --quiet --no-gold --rules FullGauss,Stratified,MonteCarlo,NRook --python "$scratch/dying_python" --results "$scratch/fig_results2" --plots "$scratch/fig_plots2"
 expect_error sample_budget "exceed the budget of 1e10 kernel evaluations per link" link "$fixtures/good_link.json" --rule MonteCarlo:10000000 --trials 100000
 expect_error input_is_a_folder "is a folder" link "$fixtures" --rule FullGauss
 

@@ -48,5 +48,30 @@ status=$?
 [ "$status" -eq 2 ] || fail "--only fig3: exit status $status, expected 2"
 grep -q "fig3" "$scratch/bad.err" || fail "--only fig3: the error does not name it: $(cat "$scratch/bad.err")"
 
+# --serve (how radquad figures draws while it computes): the stems on standard input drawn in
+# turn, each answered on standard output; an unknown stem and a table that cannot be read are
+# answered "failed" without stopping the others, and the exit status is then 1.
+printf 'fig2\nfig3\nfig1-scene\n\nfig1\n' |
+  /usr/bin/python3 "$root/plots/figures.py" --results "$root/results" --plots "$scratch/served" --serve \
+  >"$scratch/served.out" 2>"$scratch/served.err"
+status=$?
+[ "$status" -eq 1 ] || fail "--serve: exit status $status, expected 1 (fig3 failed)"
+[ "$(tr '\n' ' ' <"$scratch/served.out")" = "drawn fig2 failed fig3 drawn fig1-scene drawn fig1 " ] ||
+  fail "--serve answered: $(tr '\n' ' ' <"$scratch/served.out")"
+grep -q "fig3" "$scratch/served.err" || fail "--serve: the error does not name fig3: $(cat "$scratch/served.err")"
+for stem in fig2 fig1-scene fig1; do
+  cmp -s "$scratch/served/$stem.svg" "$scratch/all/$stem.svg" || fail "--serve drew another $stem.svg"
+  cmp -s "$scratch/served/$stem-breakdown.png" "$scratch/all/$stem-breakdown.png" ||
+    fail "--serve drew another $stem-breakdown.png"
+done
+mkdir -p "$scratch/missing"
+echo fig1 | /usr/bin/python3 "$root/plots/figures.py" --results "$scratch/missing" --plots "$scratch/served2" \
+  --serve >"$scratch/served2.out" 2>"$scratch/served2.err"
+status=$?
+[ "$status" -eq 1 ] && [ "$(cat "$scratch/served2.out")" = "failed fig1" ] ||
+  fail "--serve on a missing table: status $status, answer $(cat "$scratch/served2.out")"
+grep -q "cannot read .*fig1.json" "$scratch/served2.err" ||
+  fail "--serve on a missing table: $(cat "$scratch/served2.err")"
+
 [ "$failures" -eq 0 ] && echo "figures.py: all checks passed"
 exit $((failures > 0))
