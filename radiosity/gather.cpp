@@ -64,9 +64,10 @@ void gatherLinks(const GatherEntry* entries, std::size_t count,
 
 }  // namespace
 
-// The projections Bhat of every (source, source points) pair some link gathers through
-// (source_projection.h), from the sources' current radiosity.
-void Solver::projectSources() {
+// Where the projections Bhat of every (source, source points) pair some link gathers through
+// go (source_projection.h): laid out again whenever the gather table is, since only the
+// links' creation, splits and couplings change which pairs are gathered through.
+void Solver::layOutProjections() {
   const int orders = options_.degree + 1;
   const std::size_t shapes = std::size_t(orders * orders);
   projectionOffset_.assign(hierarchy_->size() * shapes, -1);
@@ -85,6 +86,12 @@ void Solver::projectSources() {
     total += (shape / orders + 1) * (shape % orders + 1) * 3;
   }
   projections_.resize(std::size_t(total));
+}
+
+// The projections, from the sources' current radiosity.
+void Solver::projectSources() {
+  const int orders = options_.degree + 1;
+  const std::size_t shapes = std::size_t(orders * orders);
   tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {
     for (std::size_t shape = 0; shape < shapes; ++shape) {
       const std::ptrdiff_t offset = projectionOffset_[e * shapes + shape];
@@ -99,8 +106,11 @@ void Solver::projectSources() {
 // E_R = sum over R's links of K B_S (docs/design.md: E_a = sum_b K[a][b] B_b), with every
 // source's radiosity from the previous iteration (Jacobi).
 void Solver::gather() {
+  if (!impl_->gatherCurrent) {
+    layOutProjections();
+    buildGatherTable();
+  }
   projectSources();
-  if (!impl_->gatherCurrent) buildGatherTable();
   const int functions = hierarchy_->functions();
   const Impl& impl = *impl_;
   tbb::parallel_for(std::size_t(0), hierarchy_->size(), [&](std::size_t e) {

@@ -47,22 +47,37 @@ void Solver::computeCouplings() {
   HugePageVector<GaussPointCounts> rules;
   std::vector<bool> again;
   std::vector<bool> composites;
-  for (std::size_t k = 0; k < links_.size(); ++k) {
-    SolverLink& link = links_[k];
-    if (!link.active) continue;
-    const std::array<int, 2>& sourcePoints = sourcePoints_[std::size_t(link.source)];
-    if (link.coupling.computed && sourcePoints == link.coupling.sourcePoints) continue;
+  // The links that may need a (new) coupling: found in parallel, block by block, and taken in
+  // link order. After the first passes, with fixed rules, only new links are.
+  const auto mayNeedCoupling = [&](const SolverLink& link) {
+    if (!link.active) return false;
+    if (link.coupling.computed) {
+      return sourcePoints_[std::size_t(link.source)] != link.coupling.sourcePoints;
+    }
     // A link whose source has no radiosity yet carries nothing: it is integrated once its
     // source has some (with every rule choice), so that the adaptive choice sees the
     // source's coefficients rather than zeros.
-    if (!link.coupling.computed && (*hierarchy_)[link.source].radiosity.isZero(0.0)) continue;
-    link.coupling.sourcePoints = sourcePoints;
-    const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
-    if (link.coupling.computed && rule == link.coupling.rule) continue;
-    if (link.coupling.computed) ++statistics_.recomputations;
-    todo.push_back(int(k));
-    rules.push_back(rule);
-    again.push_back(link.coupling.computed);
+    return !(*hierarchy_)[link.source].radiosity.isZero(0.0);
+  };
+  constexpr std::size_t kScanBlock = 1 << 14;
+  std::vector<std::vector<int>> found((links_.size() + kScanBlock - 1) / kScanBlock);
+  tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t block) {
+    const std::size_t end = std::min(links_.size(), (block + 1) * kScanBlock);
+    for (std::size_t k = block * kScanBlock; k < end; ++k) {
+      if (mayNeedCoupling(links_[k])) found[block].push_back(int(k));
+    }
+  });
+  for (const std::vector<int>& block : found) {
+    for (const int k : block) {
+      SolverLink& link = links_[std::size_t(k)];
+      link.coupling.sourcePoints = sourcePoints_[std::size_t(link.source)];
+      const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
+      if (link.coupling.computed && rule == link.coupling.rule) continue;
+      if (link.coupling.computed) ++statistics_.recomputations;
+      todo.push_back(k);
+      rules.push_back(rule);
+      again.push_back(link.coupling.computed);
+    }
   }
   // Slots and kept columns change below: the gather table is built again.
   if (!todo.empty()) impl_->gatherCurrent = false;
@@ -217,6 +232,7 @@ void Solver::solve() {
   // Hanrahan, Salzman and Aupperle's scheme: refine, iterate until the radiosity settles,
   // refine again with the settled radiosity; done when a refinement pass splits nothing.
   double change = std::numeric_limits<double>::infinity();
+  std::size_t active = 0;  // active links, for the progress reports
   for (int iteration = 1; iteration <= options_.maxIterations; ++iteration) {
     const bool recheck = iteration == 1 || change < options_.tolerance;
     const bool refined = budgetExceeded_.empty() && recheck && refinementPass();
@@ -248,8 +264,11 @@ void Solver::solve() {
       break;
     }
     if (options_.progress) {
-      std::size_t active = 0;
-      for (const SolverLink& link : links_) active += link.active ? 1 : 0;
+      // Links change activity only when they are created or split (classification included).
+      if (iteration == 1 || refined) {
+        active = 0;
+        for (const SolverLink& link : links_) active += link.active ? 1 : 0;
+      }
       options_.progress(SolveProgress{iteration, active, hierarchy_->size(),
                                       statistics_.kernelEvaluations, change, elapsed()});
     }

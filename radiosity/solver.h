@@ -240,6 +240,7 @@ class Solver {
   GaussPointCounts chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
   void updateSourcePoints();
   void computeCouplings();
+  void layOutProjections();
   void projectSources();
   void gather();
   void buildGatherTable();
