@@ -139,13 +139,14 @@ void Solver::gather() {
 void Solver::buildGatherTable() {
   const std::size_t elements = hierarchy_->size();
   impl_->gatherBegin.assign(elements + 1, 0);
-  for (std::size_t e = 0; e < elements; ++e) {
+  tbb::parallel_for(std::size_t(0), elements, [&](std::size_t e) {
     std::size_t computed = 0;
     for (int index : (*hierarchy_)[int(e)].links) {
       computed += links_[std::size_t(index)].coupling.computed ? 1 : 0;
     }
-    impl_->gatherBegin[e + 1] = impl_->gatherBegin[e] + computed;
-  }
+    impl_->gatherBegin[e + 1] = computed;
+  });
+  for (std::size_t e = 0; e < elements; ++e) impl_->gatherBegin[e + 1] += impl_->gatherBegin[e];
   impl_->gatherEntries.resize(impl_->gatherBegin[elements]);
   tbb::parallel_for(std::size_t(0), elements, [&](std::size_t e) {
     std::size_t k = impl_->gatherBegin[e];

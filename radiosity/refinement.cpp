@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -116,31 +117,50 @@ double discFormFactor(const Patch& receiver, const Eigen::Vector3d& x, const Pat
 // positive whenever the link can carry energy. Without this such links were never refined and
 // kept one coarse rule across the discontinuity (cornell's block faces converged to up to 10%
 // too dark, whatever --bf-eps).
-bool Solver::oracleSaysRefine(const SolverLink& link) const {
+double Solver::oracleFormFactor(const SolverLink& link) const {
   const Element& receiver = (*hierarchy_)[link.receiver];
   const Element& source = (*hierarchy_)[link.source];
   const Element& larger = receiver.geometry.area >= source.geometry.area ? receiver : source;
-  if (larger.geometry.area <= minArea_ || larger.level >= options_.maxLevel) return false;
+  if (larger.geometry.area <= minArea_ || larger.level >= options_.maxLevel) return 0.0;
   const Patch& r = receiver.geometry;
   const Patch& s = source.geometry;
+  if (!cutByTangentPlane(r, s)) return discFormFactor(r, r.centre(), s, s.centre());
   double formFactor = 0.0;
-  if (!cutByTangentPlane(r, s)) {
-    formFactor = discFormFactor(r, r.centre(), s, s.centre());
-  } else {
-    for (int a = 0; a < 9; ++a) {
-      const Eigen::Vector3d x = r.pointAt(0.5 * (a / 3), 0.5 * (a % 3));
-      for (int b = 0; b < 9; ++b) {
-        formFactor =
-            std::max(formFactor, discFormFactor(r, x, s, s.pointAt(0.5 * (b / 3), 0.5 * (b % 3))));
-      }
+  for (int a = 0; a < 9; ++a) {
+    const Eigen::Vector3d x = r.pointAt(0.5 * (a / 3), 0.5 * (a % 3));
+    for (int b = 0; b < 9; ++b) {
+      formFactor =
+          std::max(formFactor, discFormFactor(r, x, s, s.pointAt(0.5 * (b / 3), 0.5 * (b % 3))));
     }
   }
-  double estimate = formFactor * std::max(0.0, source.meanRadiosity().maxCoeff());
+  return formFactor;
+}
+
+bool Solver::oracleSaysRefine(SolverLink& link) const {
   // Partial links are less certain; so are occluded ones, whose class rests on rays between
   // stratum centres that can miss a sliver of visibility: one whose estimate calls for a
   // split is split, and its children classified again.
+  const double factor = link.visibility != LinkClass::kUnoccluded ? options_.partialFactor : 1.0;
+  const double radiosity = std::max(0.0, (*hierarchy_)[link.source].meanRadiosity().maxCoeff());
+  const double threshold = options_.bfEpsilon * radiosityScale_;
+  // The form factor kept in single precision decides every link whose estimate lies clear of
+  // the threshold (its rounding, below 1e-7 relative, cannot cross a margin of 1e-6); the
+  // others, and a link's first examination, take the estimate in double precision, so the
+  // decisions are those of the double-precision estimate everywhere.
+  if (link.oracleFormFactor >= 0.0f) {
+    const double estimate = double(link.oracleFormFactor) * radiosity * factor;
+    if (estimate > threshold * (1.0 + 1e-6)) return true;
+    if (estimate < threshold * (1.0 - 1e-6)) return false;
+  }
+  const double formFactor = oracleFormFactor(link);
+  // Kept where single precision holds it to its relative rounding (0, or a normal float).
+  const bool representable =
+      formFactor == 0.0 || (formFactor >= double(std::numeric_limits<float>::min()) &&
+                            formFactor <= double(std::numeric_limits<float>::max()));
+  link.oracleFormFactor = representable ? float(formFactor) : -1.0f;
+  double estimate = formFactor * radiosity;
   if (link.visibility != LinkClass::kUnoccluded) estimate *= options_.partialFactor;
-  return estimate > options_.bfEpsilon * radiosityScale_;
+  return estimate > threshold;
 }
 
 // Splits every active link the oracle rejects into links to the larger element's children,
@@ -174,7 +194,7 @@ bool Solver::refinementPass() {
     // choices are made in parallel and applied in order).
     HugePageVector<int> choices(pending.size());
     tbb::parallel_for(std::size_t(0), pending.size(), [&](std::size_t k) {
-      const SolverLink& link = links_[std::size_t(pending[k])];
+      SolverLink& link = links_[std::size_t(pending[k])];
       choices[k] = examined(link) && oracleSaysRefine(link) ? splitSide(link) : -1;
     });
     HugePageVector<int> created;
@@ -201,6 +221,7 @@ bool Solver::refinementPass() {
       SolverLink& parent = links_[std::size_t(index)];
       parent.active = false;
       parent.split = true;
+      splitSinceListed_.push_back(index);
       parent.coupling.computed = false;
       if (parent.coupling.slot >= 0) {
         impl_->couplings.release(keptColumns(parent), std::exchange(parent.coupling.slot, -1));

@@ -154,6 +154,33 @@ void Solver::rebuildElementLinks() {
   for (std::size_t k = 0; k < links_.size(); ++k) {
     if (links_[k].active) (*hierarchy_)[links_[k].receiver].links.push_back(int(k));
   }
+  listedLinks_ = links_.size();
+  splitSinceListed_.clear();
+}
+
+// The lists as rebuildElementLinks would make them, from the changes since they were last
+// made: a link only ever goes from active to inactive (split, or classified occluded when it
+// is created), and links are only appended, so each list keeps its links that are still
+// active, in order, followed by the active links created since, in order.
+void Solver::updateElementLinks() {
+  if (listedLinks_ == 0) return rebuildElementLinks();
+  impl_->gatherCurrent = false;
+  std::vector<int> receivers;
+  receivers.reserve(splitSinceListed_.size());
+  for (const int k : splitSinceListed_) {
+    if (std::size_t(k) < listedLinks_) receivers.push_back(links_[std::size_t(k)].receiver);
+  }
+  std::sort(receivers.begin(), receivers.end());
+  receivers.erase(std::unique(receivers.begin(), receivers.end()), receivers.end());
+  tbb::parallel_for(std::size_t(0), receivers.size(), [&](std::size_t r) {
+    std::erase_if((*hierarchy_)[receivers[r]].links,
+                  [&](int k) { return !links_[std::size_t(k)].active; });
+  });
+  for (std::size_t k = listedLinks_; k < links_.size(); ++k) {
+    if (links_[k].active) (*hierarchy_)[links_[k].receiver].links.push_back(int(k));
+  }
+  listedLinks_ = links_.size();
+  splitSinceListed_.clear();
 }
 
 // Returns the relative L2 change of the patch-level radiosity (the roots' coefficients are
@@ -245,7 +272,7 @@ void Solver::solve() {
       break;
     }
     // The elements' lists of active links change only when links are created or split.
-    if (iteration == 1 || refined) rebuildElementLinks();
+    if (iteration == 1 || refined) updateElementLinks();
     computeCouplings();
     if (memoryExceeded("the coupling integration")) {
       statistics_.failure = budgetExceeded_;
@@ -278,7 +305,7 @@ void Solver::solve() {
                           " iterations (last relative change " +
                           std::to_string(statistics_.finalChange) + ")";
   }
-  rebuildElementLinks();
+  updateElementLinks();
   checkFormFactorSums();
   countLinks();
   statistics_.elapsedSeconds = elapsed();

@@ -148,6 +148,11 @@ struct SolverLink {
   bool active = true;
   bool split = false;
   bool occlusionProven = false;  // occluded by one candidate (blocksShaft): never examined
+  // The BF oracle's form-factor estimate (a function of the two elements alone), kept in
+  // single precision once computed, so that later refinement passes only multiply it by the
+  // source's radiosity; -1 until the oracle first examines the link, 0 where the larger
+  // element may not be split (Solver::oracleSaysRefine).
+  float oracleFormFactor = -1.0f;
   std::vector<int> candidates;   // candidate occluders (patch indices)
   LinkCoupling coupling;
 };
@@ -232,7 +237,11 @@ class Solver {
   bool memoryExceeded(const char* phase);
   std::string budgetExceeded_;  // set when a budget stops the solve
   void classifyLinks(HugePageVector<int>& created);
-  bool oracleSaysRefine(const SolverLink& link) const;
+  // Records the link's form-factor estimate (link.oracleFormFactor) on its first examination.
+  bool oracleSaysRefine(SolverLink& link) const;
+  // The oracle's form-factor estimate, in double precision (0 where the link's larger element
+  // may not be split).
+  double oracleFormFactor(const SolverLink& link) const;
   // The adaptive rules' input for a source element; `magnitudes` holds (d+1)^2 values.
   AdaptiveGaussInput adaptiveInput(int sourceElement, double* magnitudes) const;
   // The link's rule, from link.coupling.sourcePoints (the source's Figure 4 points of this pass, set
@@ -245,7 +254,11 @@ class Solver {
   void gather();
   void buildGatherTable();
   double pushPull();
+  // The elements' lists of active links (Element::links, in link order): rebuilt from every
+  // link, or brought up to date after a refinement pass (the links it split leave their
+  // receivers' lists, the active links it created join theirs).
   void rebuildElementLinks();
+  void updateElementLinks();
   void countLinks();
 
   const Scene& scene_;
@@ -253,6 +266,10 @@ class Solver {
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Hierarchy> hierarchy_;
   LinkArray links_;
+  // The links the element lists were last built from (links_[0, listedLinks_)) and the links
+  // split since (refinementPass), for updateElementLinks.
+  std::size_t listedLinks_ = 0;
+  std::vector<int> splitSinceListed_;
   std::vector<std::array<int, 2>> sourcePoints_;  // per element, see updateSourcePoints
   // gather(): the sources' projections Bhat, at projectionOffset_[element * (d+1)^2 + shape]
   // (shape (pu - 1) * (d+1) + pv - 1; -1 where no link gathers through it).

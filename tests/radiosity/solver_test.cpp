@@ -93,6 +93,36 @@ TEST(SolverDeterminismTest, ResultDoesNotDependOnTheThreadCount) {
   }
 }
 
+// The elements' lists of active links are brought up to date after each refinement pass
+// rather than rebuilt (Solver::updateElementLinks): after a solve whose refinement passes came
+// after iterations (the active links changed between progress reports), every element lists
+// exactly the active links it receives, in link order, as a rebuild from the links makes them.
+TEST(SolverElementLinksTest, EveryElementListsItsActiveLinksInOrderAfterLaterRefinements) {
+  const Scene scene = *builtinScene("cornell");
+  SolverOptions options;
+  options.degree = 1;
+  options.bfEpsilon = 0.2;
+  std::vector<std::size_t> active;
+  options.progress = [&](const SolveProgress& progress) { active.push_back(progress.activeLinks); };
+  Solver solver(scene, options);
+  solver.solve();
+  ASSERT_TRUE(solver.statistics().converged);
+  int changes = 0;
+  for (std::size_t k = 1; k < active.size(); ++k) changes += active[k] != active[k - 1] ? 1 : 0;
+  ASSERT_GE(changes, 2) << "the solve must refine after iterating, more than once";
+  std::vector<std::vector<int>> expected(solver.hierarchy().size());
+  std::size_t split = 0;
+  for (std::size_t k = 0; k < solver.links().size(); ++k) {
+    const SolverLink& link = solver.links()[k];
+    if (link.active) expected[std::size_t(link.receiver)].push_back(int(k));
+    split += link.split ? 1 : 0;
+  }
+  ASSERT_GT(split, 0u);
+  for (std::size_t e = 0; e < expected.size(); ++e) {
+    ASSERT_EQ(solver.hierarchy()[int(e)].links, expected[e]) << "element " << e;
+  }
+}
+
 }  // namespace
 }  // namespace radquad
 
