@@ -71,10 +71,13 @@ void Solver::layOutProjections() {
   const int orders = options_.degree + 1;
   const std::size_t shapes = std::size_t(orders * orders);
   projectionOffset_.assign(hierarchy_->size() * shapes, -1);
-  for (const SolverLink& link : links_) {
-    if (!link.active || !link.coupling.computed) continue;
+  const auto gathersThroughProjection = [orders](const SolverLink& link) {
+    return link.active && link.coupling.computed &&
+           !(link.coupling.gatherPoints[0] == orders && link.coupling.gatherPoints[1] == orders);
+  };
+  for (const int k : linksWhere(links_, gathersThroughProjection)) {
+    const SolverLink& link = links_[std::size_t(k)];
     const int pu = link.coupling.gatherPoints[0], pv = link.coupling.gatherPoints[1];
-    if (pu == orders && pv == orders) continue;
     projectionOffset_[std::size_t(link.source) * shapes + std::size_t((pu - 1) * orders + pv - 1)] =
         0;
   }

@@ -172,10 +172,7 @@ bool Solver::refinementPass() {
     return link.active ||
            (link.visibility == LinkClass::kOccluded && !link.occlusionProven && !link.split);
   };
-  HugePageVector<int> pending;
-  for (std::size_t k = 0; k < links_.size(); ++k) {
-    if (examined(links_[k])) pending.push_back(int(k));
-  }
+  HugePageVector<int> pending = linksWhere(links_, examined);
   bool refined = false;
   ProgressThrottle throttle;
   int wave = 0;

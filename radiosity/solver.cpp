@@ -59,25 +59,15 @@ void Solver::computeCouplings() {
     // source's coefficients rather than zeros.
     return !(*hierarchy_)[link.source].radiosity.isZero(0.0);
   };
-  constexpr std::size_t kScanBlock = 1 << 14;
-  std::vector<std::vector<int>> found((links_.size() + kScanBlock - 1) / kScanBlock);
-  tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t block) {
-    const std::size_t end = std::min(links_.size(), (block + 1) * kScanBlock);
-    for (std::size_t k = block * kScanBlock; k < end; ++k) {
-      if (mayNeedCoupling(links_[k])) found[block].push_back(int(k));
-    }
-  });
-  for (const std::vector<int>& block : found) {
-    for (const int k : block) {
-      SolverLink& link = links_[std::size_t(k)];
-      link.coupling.sourcePoints = sourcePoints_[std::size_t(link.source)];
-      const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
-      if (link.coupling.computed && rule == link.coupling.rule) continue;
-      if (link.coupling.computed) ++statistics_.recomputations;
-      todo.push_back(k);
-      rules.push_back(rule);
-      again.push_back(link.coupling.computed);
-    }
+  for (const int k : linksWhere(links_, mayNeedCoupling)) {
+    SolverLink& link = links_[std::size_t(k)];
+    link.coupling.sourcePoints = sourcePoints_[std::size_t(link.source)];
+    const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
+    if (link.coupling.computed && rule == link.coupling.rule) continue;
+    if (link.coupling.computed) ++statistics_.recomputations;
+    todo.push_back(k);
+    rules.push_back(rule);
+    again.push_back(link.coupling.computed);
   }
   // Slots and kept columns change below: the gather table is built again.
   if (!todo.empty()) impl_->gatherCurrent = false;

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -52,5 +54,26 @@ struct Solver::Impl {
   std::vector<std::size_t> gatherBegin;
   bool gatherCurrent = false;
 };
+
+// The indices of the links for which `pick(link)` holds, in link order: the links are scanned
+// in parallel, block by block (a scan over millions of links otherwise takes a core's tens of
+// milliseconds, in every pass).
+template <typename Pick>
+HugePageVector<int> linksWhere(const LinkArray& links, const Pick& pick) {
+  constexpr std::size_t kBlock = std::size_t(1) << 14;
+  std::vector<std::vector<int>> found((links.size() + kBlock - 1) / kBlock);
+  tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t block) {
+    const std::size_t end = std::min(links.size(), (block + 1) * kBlock);
+    for (std::size_t k = block * kBlock; k < end; ++k) {
+      if (pick(links[k])) found[block].push_back(int(k));
+    }
+  });
+  std::size_t total = 0;
+  for (const std::vector<int>& block : found) total += block.size();
+  HugePageVector<int> indices;
+  indices.reserve(total);
+  for (const std::vector<int>& block : found) indices.insert(indices.end(), block.begin(), block.end());
+  return indices;
+}
 
 }  // namespace radquad
