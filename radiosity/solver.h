@@ -150,8 +150,9 @@ struct SolverLink {
   bool occlusionProven = false;  // occluded by one candidate (blocksShaft): never examined
   // The BF oracle's form-factor estimate (a function of the two elements alone), kept in
   // single precision once computed, so that later refinement passes only multiply it by the
-  // source's radiosity; -1 until the oracle first examines the link, 0 where the larger
-  // element may not be split (Solver::oracleSaysRefine).
+  // source's radiosity; -1 until the oracle first examines the link (and where single
+  // precision cannot hold it), 0 where the larger element may not be split
+  // (Solver::oracleSaysRefine).
   float oracleFormFactor = -1.0f;
   std::vector<int> candidates;   // candidate occluders (patch indices)
   LinkCoupling coupling;
