@@ -158,9 +158,7 @@ bool Solver::oracleSaysRefine(SolverLink& link) const {
       formFactor == 0.0 || (formFactor >= double(std::numeric_limits<float>::min()) &&
                             formFactor <= double(std::numeric_limits<float>::max()));
   link.oracleFormFactor = representable ? float(formFactor) : -1.0f;
-  double estimate = formFactor * radiosity;
-  if (link.visibility != LinkClass::kUnoccluded) estimate *= options_.partialFactor;
-  return estimate > threshold;
+  return formFactor * radiosity * factor > threshold;
 }
 
 // Splits every active link the oracle rejects into links to the larger element's children,

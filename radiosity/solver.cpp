@@ -138,22 +138,13 @@ void Solver::computeCouplings() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stored).count();
 }
 
-void Solver::rebuildElementLinks() {
-  impl_->gatherCurrent = false;
-  for (std::size_t e = 0; e < hierarchy_->size(); ++e) (*hierarchy_)[int(e)].links.clear();
-  for (std::size_t k = 0; k < links_.size(); ++k) {
-    if (links_[k].active) (*hierarchy_)[links_[k].receiver].links.push_back(int(k));
-  }
-  listedLinks_ = links_.size();
-  splitSinceListed_.clear();
-}
-
-// The lists as rebuildElementLinks would make them, from the changes since they were last
-// made: a link only ever goes from active to inactive (split, or classified occluded when it
-// is created), and links are only appended, so each list keeps its links that are still
-// active, in order, followed by the active links created since, in order.
+// The elements' lists as a pass over every link would make them (each element's active
+// links, in link order), from the changes since they were last made: a link only ever goes
+// from active to inactive (split, or classified occluded when it is created), and links are
+// only appended, so each list keeps its links that are still active, in order, followed by the
+// active links created since, in order. The first call (no link listed yet, every list empty)
+// lists every active link.
 void Solver::updateElementLinks() {
-  if (listedLinks_ == 0) return rebuildElementLinks();
   impl_->gatherCurrent = false;
   std::vector<int> receivers;
   receivers.reserve(splitSinceListed_.size());

@@ -255,10 +255,9 @@ class Solver {
   void gather();
   void buildGatherTable();
   double pushPull();
-  // The elements' lists of active links (Element::links, in link order): rebuilt from every
-  // link, or brought up to date after a refinement pass (the links it split leave their
-  // receivers' lists, the active links it created join theirs).
-  void rebuildElementLinks();
+  // The elements' lists of active links (Element::links, in link order), brought up to date
+  // after the initial linking or a refinement pass (the links it split leave their receivers'
+  // lists, the active links it created join theirs).
   void updateElementLinks();
   void countLinks();
 
