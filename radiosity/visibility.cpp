@@ -91,20 +91,35 @@ VisibilityVariation visibilityVariation(const OccluderScene& occluders, const Pa
 }
 
 VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderScene& occluders)
-    : scene_(scene), occluders_(occluders) {}
+    : scene_(scene), occluders_(occluders) {
+  // Every link tests its candidates' corners and boxes: computed once.
+  bounds_.reserve(scene.patches.size());
+  for (const ScenePatch& patch : scene.patches) {
+    PatchBounds bounds;
+    bounds.corners = patch.patch.corners();
+    bounds.low = bounds.corners[0];
+    bounds.high = bounds.corners[0];
+    for (const Vec& point : bounds.corners) {
+      bounds.low = bounds.low.cwiseMin(point);
+      bounds.high = bounds.high.cwiseMax(point);
+    }
+    bounds_.push_back(bounds);
+  }
+}
 
 // A link's shaft: the convex hull of its two elements, with its bounding box and its
 // supporting planes through an edge of one element and a corner of the other (those with the
 // whole hull on one side, n.x <= offset + tolerance). Built once per link and tested against
-// every candidate; the planes only when a candidate first survives the cheaper tests (box,
-// the elements' planes), which settle most candidates of most links.
+// every candidate; the planes pair by pair, only as far as the candidates that survive the
+// cheaper tests (box, the elements' planes, which settle most candidates of most links) need
+// them: a candidate is separated as soon as one plane has it beyond.
 struct VisibilityClassifier::Shaft {
   const Patch* receiver = nullptr;
   const Patch* source = nullptr;
   std::array<Vec, 8> hull;  // the receiver's corners, then the source's
   Vec low, high;
   double tolerance = 0.0;
-  bool planesBuilt = false;
+  int pairsBuilt = 0;  // (edge, corner) pairs whose planes are built, of 2 x 4 x 4
   int planes = 0;
   std::array<Vec, 64> normals;  // 2 sides x 4 edges x 4 corners x 2 orientations at most
   std::array<double, 64> offsets;
@@ -121,32 +136,32 @@ struct VisibilityClassifier::Shaft {
     tolerance = 1e-9 * std::max((high - low).norm(), 1e-300);
   }
 
-  void buildPlanes() {
-    planesBuilt = true;
-    for (int side = 0; side < 2; ++side) {
-      const std::size_t edges = side == 0 ? 0 : 4, apexes = side == 0 ? 4 : 0;
-      for (std::size_t k = 0; k < 4; ++k) {
-        const Vec& a = hull[edges + k];
-        const Vec& b = hull[edges + (k + 1) % 4];
-        for (std::size_t c = 0; c < 4; ++c) {
-          const Vec& apex = hull[apexes + c];
-          Vec normal = (b - a).cross(apex - a);
-          const double length = normal.norm();
-          if (length <= 1e-12 * (b - a).norm() * (apex - a).norm()) continue;
-          normal /= length;
-          // Either orientation may have the hull behind it (both, where the hull is flat).
-          const double offset = normal.dot(a);
-          double lowest = normal.dot(hull[0]), highest = lowest;
-          for (const Vec& point : hull) {
-            const double height = normal.dot(point);
-            lowest = std::min(lowest, height);
-            highest = std::max(highest, height);
-          }
-          if (!(highest > offset + tolerance)) add(normal, offset);
-          if (!(-lowest > -offset + tolerance)) add(-normal, -offset);
-        }
-      }
+  static constexpr int kPairs = 32;
+
+  // The planes of the next (edge, corner) pair, in a fixed order (side, edge, corner): an
+  // edge of one element and a corner of the other, either orientation that has the whole
+  // hull behind it (both, where the hull is flat).
+  void buildNextPair() {
+    const int pair = pairsBuilt++;
+    const int side = pair / 16;
+    const std::size_t k = std::size_t(pair / 4 % 4), c = std::size_t(pair % 4);
+    const std::size_t edges = side == 0 ? 0 : 4, apexes = side == 0 ? 4 : 0;
+    const Vec& a = hull[edges + k];
+    const Vec& b = hull[edges + (k + 1) % 4];
+    const Vec& apex = hull[apexes + c];
+    Vec normal = (b - a).cross(apex - a);
+    const double length = normal.norm();
+    if (length <= 1e-12 * (b - a).norm() * (apex - a).norm()) return;
+    normal /= length;
+    const double offset = normal.dot(a);
+    double lowest = normal.dot(hull[0]), highest = lowest;
+    for (const Vec& point : hull) {
+      const double height = normal.dot(point);
+      lowest = std::min(lowest, height);
+      highest = std::max(highest, height);
     }
+    if (!(highest > offset + tolerance)) add(normal, offset);
+    if (!(-lowest > -offset + tolerance)) add(-normal, -offset);
   }
 
   void add(const Vec& normal, double offset) {
@@ -157,17 +172,13 @@ struct VisibilityClassifier::Shaft {
 };
 
 bool VisibilityClassifier::separated(Shaft& shaft, int patch) const {
-  const std::array<Vec, 4> occluder = scene_.patches[std::size_t(patch)].patch.corners();
+  const PatchBounds& bounds = bounds_[std::size_t(patch)];
+  const std::array<Vec, 4>& occluder = bounds.corners;
   const double tolerance = shaft.tolerance;
   // Bounding boxes.
-  Vec occluderLow = occluder[0], occluderHigh = occluder[0];
-  for (const Vec& point : occluder) {
-    occluderLow = occluderLow.cwiseMin(point);
-    occluderHigh = occluderHigh.cwiseMax(point);
-  }
   for (int axis = 0; axis < 3; ++axis) {
-    if (occluderLow[axis] >= shaft.high[axis] - tolerance) return true;
-    if (occluderHigh[axis] <= shaft.low[axis] + tolerance) return true;
+    if (bounds.low[axis] >= shaft.high[axis] - tolerance) return true;
+    if (bounds.high[axis] <= shaft.low[axis] + tolerance) return true;
   }
   // Behind (or on) the receiver's or the source's plane: the segments that carry energy
   // start on one element and end strictly in front of it, so they never reach there.
@@ -178,14 +189,25 @@ bool VisibilityClassifier::separated(Shaft& shaft, int patch) const {
     }
     if (allBehind) return true;
   }
-  // The occluder wholly on or beyond one of the shaft's supporting planes.
-  if (!shaft.planesBuilt) shaft.buildPlanes();
-  for (int k = 0; k < shaft.planes; ++k) {
+  // The occluder wholly on or beyond one of the shaft's supporting planes: those built for
+  // the link's earlier candidates, then the rest, built as far as this occluder needs (a
+  // link whose candidates are all settled early builds only the planes that settle them).
+  const auto beyondPlane = [&](int k) {
     const Vec& normal = shaft.normals[std::size_t(k)];
     const double offset = shaft.offsets[std::size_t(k)];
     bool beyond = true;
     for (const Vec& point : occluder) beyond = beyond && !(normal.dot(point) < offset + tolerance);
-    if (beyond) return true;
+    return beyond;
+  };
+  for (int k = 0; k < shaft.planes; ++k) {
+    if (beyondPlane(k)) return true;
+  }
+  while (shaft.pairsBuilt < Shaft::kPairs) {
+    const int first = shaft.planes;
+    shaft.buildNextPair();
+    for (int k = first; k < shaft.planes; ++k) {
+      if (beyondPlane(k)) return true;
+    }
   }
   return false;
 }
@@ -224,6 +246,22 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
   // the first packet with a visible ray; only an occluded link traces every pair.
   constexpr int n = kGridPoints;
   constexpr int points = n * n;
+  // Where every corner of each element lies in front of the other's plane by far more than
+  // rounding (1e-9 of the largest coordinate), every pair of their points has both cosines
+  // positive (each cosine is affine along the other element), and the kernel's sign need not
+  // be tested pair by pair: the same pairs are traced.
+  bool facing = true;
+  {
+    const std::array<Vec, 4> rc = receiver.corners(), sc = source.corners();
+    double extent = 0.0;
+    for (const auto* corners : {&rc, &sc}) {
+      for (const Vec& point : *corners) extent = std::max(extent, point.cwiseAbs().maxCoeff());
+    }
+    const double margin = 1e-9 * extent;
+    facing = extent > 0.0 && extent < 1e30;
+    for (const Vec& point : sc) facing = facing && receiver.normal.dot(point - receiver.origin) > margin;
+    for (const Vec& point : rc) facing = facing && source.normal.dot(point - source.origin) > margin;
+  }
   std::array<Vec, points> x, y;
   for (int i = 0; i < points; ++i) {
     x[std::size_t(i)] = receiver.pointAt((i / n + 0.5) / n, (i % n + 0.5) / n);
@@ -245,7 +283,7 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
     for (int i = 0; i < points; ++i) {
       const Vec& from = x[std::size_t(i)];
       const Vec& to = y[std::size_t((i + round) % points)];
-      if (unoccludedKernel(receiver, from, source, to) <= 0.0) continue;
+      if (!facing && unoccludedKernel(receiver, from, source, to) <= 0.0) continue;
       segments.push(from, to - from);
       if (segments.size() == 16 && traceBatch()) {
         result.visibility = LinkClass::kPartial;

@@ -15,6 +15,7 @@
 // A sub-link's shaft lies inside its parent's, so its candidates are a subset of the parent's.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -79,8 +80,14 @@ class VisibilityClassifier {
   struct Shaft;
   bool separated(Shaft& shaft, int patch) const;  // builds the shaft's planes when needed
 
+  struct PatchBounds {
+    std::array<Eigen::Vector3d, 4> corners;
+    Eigen::Vector3d low, high;  // bounding box
+  };
+
   const Scene& scene_;
   const OccluderScene& occluders_;
+  std::vector<PatchBounds> bounds_;  // per patch of scene_
 };
 
 }  // namespace radquad

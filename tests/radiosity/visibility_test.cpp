@@ -193,6 +193,41 @@ TEST(VisibilityTest, OnlyAnUnprovenOcclusionTracesEveryPair) {
   EXPECT_EQ(open.raysCast, 16u);
 }
 
+TEST(VisibilityTest, PairsWithAPointBehindTheOtherPlaneAreNotTraced) {
+  // The receiver lies on the floor (z = 0, facing up); the source stands in the plane x = 2
+  // facing it and reaches below the floor (z from -0.5 to 1.5): its grid row at z = -0.25
+  // is behind the receiver's plane, so 16 x 12 = 192 pairs carry a positive kernel. Two walls
+  // at x = 1.5 leave a slit at z in (0.010, 0.011), which the rays cross at z >= 0.139: every
+  // ray is blocked, nothing proves it, and the occluded class traces exactly those 192 pairs.
+  Scene scene;
+  scene.patches.push_back(ScenePatch{
+      "source", Patch::make(Vec(2, 0, -0.5), Vec(0, 0, 2), Vec(0, 1, 0), "source"),
+      Vec::Constant(0.5), Vec::Zero()});
+  scene.patches.push_back(ScenePatch{
+      "receiver", Patch::make(Vec(0, 0, 0), Vec(1, 0, 0), Vec(0, 1, 0), "receiver"),
+      Vec::Constant(0.5), Vec::Zero()});
+  ASSERT_LT(scene.patches[0].patch.normal.x(), 0.0);
+  ASSERT_GT(scene.patches[1].patch.normal.z(), 0.0);
+  for (const auto& [low, high] : {std::pair{-1.0, 0.010}, std::pair{0.011, 3.0}}) {
+    scene.patches.push_back(ScenePatch{
+        "wall", Patch::make(Vec(1.5, -1, low), Vec(0, 3, 0), Vec(0, 0, high - low), "wall"),
+        Vec::Constant(0.5), Vec::Zero()});
+  }
+  const ClassifierScene setup(std::move(scene));
+  int facing = 0;
+  for (int i = 0; i < 16; ++i) {
+    for (int j = 0; j < 16; ++j) {
+      const Vec y = setup.scene.patches[0].patch.pointAt((j / 4 + 0.5) / 4, (j % 4 + 0.5) / 4);
+      if (y.z() > 0.0) ++facing;
+    }
+  }
+  ASSERT_EQ(facing, 192);
+  const Classification result = classifySquares(setup);
+  EXPECT_EQ(result.visibility, LinkClass::kOccluded);
+  EXPECT_FALSE(result.occlusionProven);
+  EXPECT_EQ(result.raysCast, 192u);
+}
+
 TEST(VisibilityTest, BackToBackPatchesDoNotExchange) {
   const Patch a = Patch::make(Vec::Zero(), Vec::UnitX(), Vec::UnitY(), "a");    // faces +z
   const Patch b = Patch::make(Vec(0, 0, -1), Vec::UnitX(), Vec::UnitY(), "b");  // faces +z
