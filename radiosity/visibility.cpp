@@ -73,21 +73,33 @@ bool blocksShaft(const Patch& occluder, const Patch& receiver, const Patch& sour
 
 VisibilityVariation visibilityVariation(const OccluderScene& occluders, const Patch& receiver,
                                         const Patch& source) {
-  // Over the quadrants' centres of `varied`, seen from `fixed`'s centre: whether some ray is
-  // blocked and some not (pairs with a zero kernel do not count).
-  auto varies = [&](const Patch& varied, bool variedIsReceiver, const Patch& fixed) {
-    const Vec centre = fixed.centre();
-    int visible = 0, blocked = 0;
+  // The quadrants' centres of each element, seen from the other's centre: an element varies
+  // when some of its rays are blocked and some not (pairs with a zero kernel do not count).
+  // The (at most eight) rays go to Embree as one packet.
+  thread_local SegmentBatch segments;
+  segments.clear();
+  int counted[2] = {0, 0};  // rays of the receiver's quadrants, then of the source's
+  for (int side = 0; side < 2; ++side) {
+    const Patch& varied = side == 0 ? receiver : source;
+    const Vec centre = (side == 0 ? source : receiver).centre();
     for (int q = 0; q < 4; ++q) {
       const Vec point = varied.pointAt(0.25 + 0.5 * (q / 2), 0.25 + 0.5 * (q % 2));
-      const Vec& from = variedIsReceiver ? point : centre;
-      const Vec& to = variedIsReceiver ? centre : point;
+      const Vec& from = side == 0 ? point : centre;
+      const Vec& to = side == 0 ? centre : point;
       if (unoccludedKernel(receiver, from, source, to) <= 0.0) continue;
-      (occluders.segmentVisible(from, to) ? visible : blocked) += 1;
+      segments.push(from, to - from);
+      ++counted[side];
     }
-    return visible > 0 && blocked > 0;
-  };
-  return {varies(receiver, true, source), varies(source, false, receiver)};
+  }
+  if (segments.size() > 0) occluders.trace(segments);
+  VisibilityVariation variation;
+  std::size_t k = 0;
+  for (int side = 0; side < 2; ++side) {
+    int visible = 0, blocked = 0;
+    for (int r = 0; r < counted[side]; ++r, ++k) (segments.visible(k) ? visible : blocked) += 1;
+    (side == 0 ? variation.receiver : variation.source) = visible > 0 && blocked > 0;
+  }
+  return variation;
 }
 
 VisibilityClassifier::VisibilityClassifier(const Scene& scene, const OccluderScene& occluders)
@@ -150,8 +162,18 @@ struct VisibilityClassifier::Shaft {
     const Vec& b = hull[edges + (k + 1) % 4];
     const Vec& apex = hull[apexes + c];
     Vec normal = (b - a).cross(apex - a);
-    const double length = normal.norm();
-    if (length <= 1e-12 * (b - a).norm() * (apex - a).norm()) return;
+    const double lengthSquared = normal.squaredNorm();
+    // Degenerate (the corner on the edge's line): |n| <= 1e-12 |b - a| |apex - a|. The
+    // squares decide it without three square roots except within 1e-9 of the threshold,
+    // where the roots are taken as the test is written (rounding moves either side by far
+    // less), so the planes are exactly those of the test itself.
+    const double bound = 1e-24 * (b - a).squaredNorm() * (apex - a).squaredNorm();
+    if (lengthSquared <= bound * (1.0 - 1e-9)) return;
+    const double length = std::sqrt(lengthSquared);
+    if (lengthSquared < bound * (1.0 + 1e-9) &&
+        length <= 1e-12 * (b - a).norm() * (apex - a).norm()) {
+      return;
+    }
     normal /= length;
     const double offset = normal.dot(a);
     double lowest = normal.dot(hull[0]), highest = lowest;
