@@ -280,7 +280,8 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
       for (const Vec& point : *corners) extent = std::max(extent, point.cwiseAbs().maxCoeff());
     }
     const double margin = 1e-9 * extent;
-    facing = extent > 0.0 && extent < 1e30;
+    // (Within these extents no kernel value of a facing pair underflows to zero.)
+    facing = extent > 1e-100 && extent < 1e30;
     for (const Vec& point : sc) facing = facing && receiver.normal.dot(point - receiver.origin) > margin;
     for (const Vec& point : rc) facing = facing && source.normal.dot(point - source.origin) > margin;
   }
