@@ -272,18 +272,14 @@ Classification VisibilityClassifier::classify(const Patch& receiver, int receive
   // rounding (1e-9 of the largest coordinate), every pair of their points has both cosines
   // positive (each cosine is affine along the other element), and the kernel's sign need not
   // be tested pair by pair: the same pairs are traced.
-  bool facing = true;
-  {
-    const std::array<Vec, 4> rc = receiver.corners(), sc = source.corners();
-    double extent = 0.0;
-    for (const auto* corners : {&rc, &sc}) {
-      for (const Vec& point : *corners) extent = std::max(extent, point.cwiseAbs().maxCoeff());
-    }
-    const double margin = 1e-9 * extent;
-    // (Within these extents no kernel value of a facing pair underflows to zero.)
-    facing = extent > 1e-100 && extent < 1e30;
-    for (const Vec& point : sc) facing = facing && receiver.normal.dot(point - receiver.origin) > margin;
-    for (const Vec& point : rc) facing = facing && source.normal.dot(point - source.origin) > margin;
+  // The shaft holds both elements' corners (receiver's first) and their box already.
+  const double extent = std::max(shaft.low.cwiseAbs().maxCoeff(), shaft.high.cwiseAbs().maxCoeff());
+  const double margin = 1e-9 * extent;
+  // (Within these extents no kernel value of a facing pair underflows to zero.)
+  bool facing = extent > 1e-100 && extent < 1e30;
+  for (std::size_t k = 0; k < 4; ++k) {
+    facing = facing && receiver.normal.dot(shaft.hull[4 + k] - receiver.origin) > margin &&
+             source.normal.dot(shaft.hull[k] - source.origin) > margin;
   }
   std::array<Vec, points> x, y;
   for (int i = 0; i < points; ++i) {
