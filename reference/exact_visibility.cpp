@@ -226,39 +226,47 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   // The side of a pyramid plane that clipConvexPolygon keeps: a vertex within the plane's
   // rounding slack lies on it (an occluder lying on the source, in a frame not aligned with
   // the axes, has its vertices at +-1e-17 from the source's plane: it is kept whole).
+  // Per plane, the parts of planeSlack that do not depend on the candidate.
+  planeNorms_.clear();
+  for (const auto& plane : pyramid) {
+    planeNorms_.push_back({plane.head<3>().lpNorm<1>(), std::abs(plane[3])});
+  }
   for (std::size_t c = 0; c < candidates_.size(); ++c) {
     const std::vector<Eigen::Vector3d>& polygon = candidates_[c];
+    const double reach = candidateReach_[c];
     slack_.clear();
-    for (const auto& plane : pyramid) {
-      slack_.push_back(planeSlack(plane.head<3>(), plane[3], candidateReach_[c]));
+    for (const auto& [norm, offset] : planeNorms_) {
+      slack_.push_back(64.0 * std::numeric_limits<double>::epsilon() * (norm * reach + offset));
     }
     slack_[1] = 0.0;  // the cut below the apex keeps every projection's depth positive
-    auto inside = [&](std::size_t k, const Eigen::Vector3d& p) {
-      return pyramid[k].head<3>().dot(p) + pyramid[k][3] >= -slack_[k];
-    };
+    // One pass over the candidate's own vertices: a plane with every vertex outside rejects
+    // it; the planes with a vertex outside are the only ones that cut. A plane with every
+    // vertex of the candidate inside has every vertex of its clipped parts inside too (they
+    // lie on segments between those vertices), so it is not tried again.
     bool rejected = false;
+    cutting_.clear();
     for (std::size_t k = 0; k < pyramid.size() && !rejected; ++k) {
-      rejected = std::none_of(polygon.begin(), polygon.end(),
-                              [&](const auto& p) { return inside(k, p); });
+      std::size_t inside = 0;
+      for (const auto& p : polygon) {
+        inside += pyramid[k].head<3>().dot(p) + pyramid[k][3] >= -slack_[k];
+      }
+      rejected = inside == 0;
+      if (inside < polygon.size()) cutting_.push_back(k);
     }
     if (rejected) continue;
-    clipA_ = polygon;
-    for (std::size_t k = 0; k < pyramid.size(); ++k) {
-      // Most planes cut no occluder: one with every vertex inside is left as it is (the clip
-      // would return the same vertices in the same order).
-      if (std::all_of(clipA_.begin(), clipA_.end(), [&](const auto& p) { return inside(k, p); })) {
-        continue;
-      }
-      clipConvexPolygon(clipA_, pyramid[k].head<3>(), pyramid[k][3], slack_[k], clipB_);
+    const std::vector<Eigen::Vector3d>* clipped = &polygon;
+    for (std::size_t k : cutting_) {
+      clipConvexPolygon(*clipped, pyramid[k].head<3>(), pyramid[k][3], slack_[k], clipB_);
       std::swap(clipA_, clipB_);
+      clipped = &clipA_;
       if (clipA_.size() < 3) break;
     }
-    if (clipA_.size() < 3) continue;
+    if (clipped->size() < 3) continue;
     if (shadowCount == shadows_.size()) shadows_.emplace_back();
     SourceRing& shadow = shadows_[shadowCount];
     shadow.clear();
     Eigen::Vector4d bounds(1e300, 1e300, -1e300, -1e300);
-    for (const auto& q : clipA_) {
+    for (const auto& q : *clipped) {
       const double depth = height - source.normal.dot(q - source.origin);  // > 0 inside
       const Eigen::Vector3d y = x + (q - x) * (height / depth);
       const Eigen::Vector2d uv((y - source.origin).dot(dualU_), (y - source.origin).dot(dualV_));

@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "kernel/coupling.h"
@@ -89,6 +90,8 @@ class ExactVisibility {
   std::vector<Eigen::Vector3d> clipA_, clipB_, front_;
   std::vector<Eigen::Vector4d> pyramid_;
   std::vector<double> slack_;  // the pyramid planes' slacks for one candidate
+  std::vector<std::pair<double, double>> planeNorms_;  // per plane: |normal|_1, |offset|
+  std::vector<std::size_t> cutting_;  // the planes that cut one candidate
   std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
   std::vector<Eigen::Vector4d> shadowBounds_;
   std::vector<char> overlaps_;  // per shadow: whether it overlaps another

@@ -19,6 +19,8 @@ extern "C" {
 double atan(double) noexcept;
 #pragma omp declare simd notinbranch
 double log1p(double) noexcept;
+#pragma omp declare simd notinbranch
+double atan2(double, double) noexcept;
 }
 #endif
 
@@ -38,6 +40,14 @@ int edgePointsFor(double accuracy) { return accuracy < 1e-6 ? 12 : 8; }
 // Where R / H reaches this, the radial moments of degrees <= 3 (powers <= 8) are taken by
 // the recurrences; below, by a Gauss rule (scaledRadialMoments, laneRadialMoments).
 constexpr double kRecurrenceFrom = 0.85;
+// At a loose accuracy (1e-6 or more) the eight-lane form takes the recurrences from 0.15,
+// and the 8-point rule below (exact to 1.5e-14 there). The recurrences lose digits as R / H
+// falls (each step subtracts terms about (R / H)^-2 times larger than its result): measured
+// against Gauss rules in long double, just above 0.15 they err by at most 1.3e-10 relative
+// up to the power 6 (degree 2) and 1.2e-8 at the power 8 (degree 3) with glibc's vector
+// atan and log1p (5e-11 and 5e-9 with the scalar ones), against the 2e-7 that the 8-point
+// edge rule allows.
+constexpr double kLooseRecurrenceFrom = 0.15;
 
 // j_m(X) = int_0^X r^m / (1 + r^2)^2 dr, m = 0..maxPower (N: the Gauss rule's points, a
 // multiple of 4).
@@ -156,23 +166,24 @@ struct NodeBatch {
   int count = 0;
 };
 
-// j_m(X[k]) = int_0^X[k] r^m / (1 + r^2)^2 dr for m = 0..P on every lane: the 12-point
-// Gauss rule where X <= 0.85 and the recurrences above (as scaledRadialMoments, which takes
-// 8 points below 0.15: 12 are as exact there); lanes on both sides of 0.85 compute both and
-// keep each lane's own.
-template <int P>
-void laneRadialMoments(const double* X, double (&j)[P + 1][kLanes]) {
-  static const GaussLegendreRule& rule = gaussLegendreUnit(12);
+// j_m(X[k]) = int_0^X[k] r^m / (1 + r^2)^2 dr for m = 0..P on every lane: the N-point
+// Gauss rule where X <= from and the recurrences above: from = 0.85 with N = 12 (as
+// scaledRadialMoments, which takes 8 points below 0.15: 12 are as exact there), or
+// kLooseRecurrenceFrom with N = 8; lanes on both sides of `from` compute both and keep each
+// lane's own.
+template <int P, int N>
+void laneRadialMoments(const double* X, double from, double (&j)[P + 1][kLanes]) {
+  static const GaussLegendreRule& rule = gaussLegendreUnit(N);
   bool small = false, large = false;
   for (int k = 0; k < kLanes; ++k) {
-    small = small || X[k] <= kRecurrenceFrom;
-    large = large || !(X[k] <= kRecurrenceFrom);  // NaN included: it then propagates
+    small = small || X[k] <= from;
+    large = large || !(X[k] <= from);  // NaN included: it then propagates
   }
   for (int m = 0; m <= P; ++m) {
     for (int k = 0; k < kLanes; ++k) j[m][k] = 0.0;
   }
   if (small) {
-    for (int q = 0; q < 12; ++q) {
+    for (int q = 0; q < N; ++q) {
       const double node = rule.nodes[std::size_t(q)], w = rule.weights[std::size_t(q)];
       double r[kLanes], term[kLanes];
       for (int k = 0; k < kLanes; ++k) {
@@ -217,7 +228,7 @@ void laneRadialMoments(const double* X, double (&j)[P + 1][kLanes]) {
       for (int k = 0; k < kLanes; ++k) jr[m][k] = l[m - 2][k] - jr[m - 2][k];
     }
     for (int m = 0; m <= P; ++m) {
-      for (int k = 0; k < kLanes; ++k) j[m][k] = X[k] <= kRecurrenceFrom ? j[m][k] : jr[m][k];
+      for (int k = 0; k < kLanes; ++k) j[m][k] = X[k] <= from ? j[m][k] : jr[m][k];
     }
   }
 }
@@ -225,7 +236,7 @@ void laneRadialMoments(const double* X, double (&j)[P + 1][kLanes]) {
 // `batch` holds kLanes nodes (those past its count padded by the caller: pad()).
 template <int D>
 void accumulateBatch(const NodeBatch& batch, double H, double a0, double nx, double ny,
-                     const Eigen::Matrix2d& toParameters, double* laneT) {
+                     const Eigen::Matrix2d& toParameters, bool loose, double* laneT) {
   constexpr int P = 2 * D + 2;  // highest radial power
   constexpr int stride = D + 1;
   const double invH = 1.0 / H;
@@ -242,7 +253,11 @@ void accumulateBatch(const NodeBatch& batch, double H, double a0, double nx, dou
     X[k] = invH / inverseR;
   }
   double j[P + 1][kLanes];
-  laneRadialMoments<P>(X, j);
+  if (loose) {
+    laneRadialMoments<P, 8>(X, kLooseRecurrenceFrom, j);
+  } else {
+    laneRadialMoments<P, 12>(X, kRecurrenceFrom, j);
+  }
   // J_m = H^(m-3) j_m; Q_k = weight (a0 J_(k+1) + a1 J_(k+2)); T[k][l] += su^k sv^l Q_(k+l).
   double Q[2 * D + 1][kLanes];
   double scale = invH * invH;  // H^(m-2) at m = 0: the scale of J_(m+1)
@@ -299,17 +314,17 @@ void radialMoments(double R, double H, int maxPower, double* out) {
   }
 }
 
-void laneRadialMoments(const double* X, int maxPower, double* out) {
+void laneRadialMoments(const double* X, int maxPower, double* out, bool loose) {
   auto copy = [&](const auto& j) {
     for (int m = 0; m <= maxPower; ++m) {
       for (int k = 0; k < kLanes; ++k) out[m * kLanes + k] = j[m][k];
     }
   };
   switch (maxPower) {
-    case 2: { double j[3][kLanes]; laneRadialMoments<2>(X, j); return copy(j); }
-    case 4: { double j[5][kLanes]; laneRadialMoments<4>(X, j); return copy(j); }
-    case 6: { double j[7][kLanes]; laneRadialMoments<6>(X, j); return copy(j); }
-    case 8: { double j[9][kLanes]; laneRadialMoments<8>(X, j); return copy(j); }
+    case 2: { double j[3][kLanes]; loose ? laneRadialMoments<2, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<2, 12>(X, kRecurrenceFrom, j); return copy(j); }
+    case 4: { double j[5][kLanes]; loose ? laneRadialMoments<4, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<4, 12>(X, kRecurrenceFrom, j); return copy(j); }
+    case 6: { double j[7][kLanes]; loose ? laneRadialMoments<6, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<6, 12>(X, kRecurrenceFrom, j); return copy(j); }
+    case 8: { double j[9][kLanes]; loose ? laneRadialMoments<8, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<8, 12>(X, kRecurrenceFrom, j); return copy(j); }
     default: throw InputError("laneRadialMoments: maxPower must be 2, 4, 6 or 8");
   }
 }
@@ -318,7 +333,8 @@ SourceMoments::SourceMoments(const Patch& source, int degree, double accuracy)
     : source_(source),
       degree_(degree),
       functions_(basisFunctionCount(degree)),
-      edgeRule_(gaussLegendreUnit(edgePointsFor(accuracy))) {
+      edgeRule_(gaussLegendreUnit(edgePointsFor(accuracy))),
+      loose_(edgePointsFor(accuracy) == 8) {
   validateBasisDegree(degree);
   axisX_ = source.edgeU.normalized();
   axisY_ = source.normal.cross(axisX_);
@@ -329,31 +345,62 @@ SourceMoments::SourceMoments(const Patch& source, int degree, double accuracy)
 
 double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
                                  const VisibleRings& visible) const {
-  double total = 0.0;
+  // Lambert: sum over edges (r0, r1) of n . (r0 x r1) / |r0 x r1| * angle(r0, r1), r the
+  // offsets of the ring's vertices from x. The edges go kLanes at a time through branch-free
+  // loops over the lanes (vector instructions; with GCC, glibc's vector atan2), each lane
+  // summing its own edges; the lanes are summed in a fixed order at the end.
+  const Eigen::Vector3d o = source_.origin - x;
+  const Eigen::Vector3d& eu = source_.edgeU;
+  const Eigen::Vector3d& ev = source_.edgeV;
+  double lanes[kLanes] = {};
   for (std::size_t r = 0; r < visible.count(); ++r) {
     const SourceRing& ring = visible.ring(r);
-    double sum = 0.0;
     const std::size_t count = ring.size();
-    if (count == 0) continue;
-    // Each vertex's offset from x once: it ends one edge and starts the next.
-    const Eigen::Vector3d first = source_.pointAt(ring[0].x(), ring[0].y()) - x;
-    Eigen::Vector3d r1 = first;
-    for (std::size_t i = 0; i < count; ++i) {
-      const Eigen::Vector3d r0 = r1;
-      if (i + 1 < count) {
-        r1 = source_.pointAt(ring[i + 1].x(), ring[i + 1].y()) - x;
-      } else {
-        r1 = first;
-      }
-      const Eigen::Vector3d cross = r0.cross(r1);
-      const double crossNorm = cross.norm();
-      if (crossNorm == 0.0) continue;
-      sum += n.dot(cross) / crossNorm * std::atan2(crossNorm, r0.dot(r1));
-    }
     // A ring counter-clockwise about the source's normal, seen from x in front of the source,
     // gives a negative sum.
-    total -= visible.sign(r) * sum;
+    const double sign = -visible.sign(r);
+    for (std::size_t first = 0; first < count; first += kLanes) {
+      double ax[kLanes], ay[kLanes], az[kLanes], bx[kLanes], by[kLanes], bz[kLanes];
+      double weight[kLanes];
+      for (int k = 0; k < kLanes; ++k) {
+        // Lanes past the ring's end repeat its first edge with no weight.
+        const bool used = first + std::size_t(k) < count;
+        const std::size_t i = used ? first + std::size_t(k) : 0;
+        const std::size_t j = i + 1 < count ? i + 1 : 0;
+        const Eigen::Vector2d& a = ring[i];
+        const Eigen::Vector2d& b = ring[j];
+        ax[k] = o.x() + a.x() * eu.x() + a.y() * ev.x();
+        ay[k] = o.y() + a.x() * eu.y() + a.y() * ev.y();
+        az[k] = o.z() + a.x() * eu.z() + a.y() * ev.z();
+        bx[k] = o.x() + b.x() * eu.x() + b.y() * ev.x();
+        by[k] = o.y() + b.x() * eu.y() + b.y() * ev.y();
+        bz[k] = o.z() + b.x() * eu.z() + b.y() * ev.z();
+        weight[k] = used ? sign : 0.0;
+      }
+      double crossNorm[kLanes], cosine[kLanes], normal[kLanes];
+      for (int k = 0; k < kLanes; ++k) {
+        const double cx = ay[k] * bz[k] - az[k] * by[k];
+        const double cy = az[k] * bx[k] - ax[k] * bz[k];
+        const double cz = ax[k] * by[k] - ay[k] * bx[k];
+        crossNorm[k] = std::sqrt(cx * cx + cy * cy + cz * cz);
+        cosine[k] = ax[k] * bx[k] + ay[k] * by[k] + az[k] * bz[k];
+        normal[k] = n.x() * cx + n.y() * cy + n.z() * cz;
+      }
+      double angle[kLanes];
+#if defined(RADQUAD_VECTOR_MATH)
+#pragma omp simd
+#endif
+      for (int k = 0; k < kLanes; ++k) angle[k] = ::atan2(crossNorm[k], cosine[k]);
+      for (int k = 0; k < kLanes; ++k) {
+        // A zero cross product (an edge of no length, or in line with x) adds nothing.
+        const bool some = crossNorm[k] > 0.0;
+        const double inverse = 1.0 / (some ? crossNorm[k] : 1.0);
+        lanes[k] += some ? weight[k] * normal[k] * inverse * angle[k] : 0.0;
+      }
+    }
   }
+  const double total = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
+                       ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
   return total / (2.0 * std::numbers::pi);
 }
 
@@ -481,7 +528,7 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
             batch.wy[batch.count] = w.y();
             batch.weight[batch.count] = weight;
             if (++batch.count == kLanes) {
-              accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, laneT);
+              accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, loose_, laneT);
               batch.count = 0;
             }
           } else {
@@ -494,7 +541,7 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
   if constexpr (kBatched) {
     if (batch.count > 0) {
       pad(batch);
-      accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, laneT);
+      accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, loose_, laneT);
     }
     sumLanes(laneT, stride * stride, T);
   }
