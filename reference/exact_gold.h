@@ -16,9 +16,13 @@
 //     rules converge exponentially and the breakpoints alone usually suffice. The breakpoints'
 //     grid costs 15 x 15 points per cell (about the square of the segments' count): when
 //     that floor exceeds maxFloorPoints, the link takes
-//   - Genz-Malik: the degree-7 rule with its embedded degree-5 rule as the error estimate
-//     (genz_malik.h), from a grid of initialGrid^2 regions, bisecting the regions of largest
-//     error; blind to the segments, it resolves them algebraically.
+//   - jump lines, when the inner integral jumps somewhere on the receiver (an occluder meets
+//     it: contactSegments): the same lines with only the jumps as breakpoints, each line and
+//     the outer integral starting from initialGrid equal pieces; the kinks are left to the
+//     halving. Genz-Malik's estimate misjudges jumps (exact_gold.cpp);
+//   - Genz-Malik otherwise: the degree-7 rule with its embedded degree-5 rule as the error
+//     estimate (genz_malik.h), from a grid of initialGrid^2 regions, bisecting the regions of
+//     largest error; blind to the segments, it resolves them algebraically.
 // Both stop when the estimated error of every coefficient is at most `tolerance` times K's
 // largest entry, or when the evaluation budget is spent (then converged = false). No random
 // numbers: the same link gives the same bits, whatever the number of threads (lines, or the
@@ -35,9 +39,11 @@
 namespace radquad {
 
 // The outer (receiver) integral: Gauss-Kronrod along lines with the critical segments as
-// breakpoints (critical_segments.h; the default), or Genz-Malik cubature over the square,
-// blind to where the integrand has kinks.
-enum class ExactOuterMethod { criticalLines, genzMalik };
+// breakpoints (critical_segments.h; the default, which falls back to one of the other two
+// where the breakpoints are too many), Gauss-Kronrod along lines with only the jumps as
+// breakpoints (contactSegments) over a grid of initialGrid pieces each way, or Genz-Malik
+// cubature over the square, blind to where the integrand has kinks.
+enum class ExactOuterMethod { criticalLines, jumpLines, genzMalik };
 
 struct ExactGoldOptions {
   double tolerance = 1e-7;             // estimated error / max |K| entry
@@ -81,7 +87,7 @@ struct ExactGold {
   ExactOuterMethod outer = ExactOuterMethod::criticalLines;  // the method used
 };
 
-// "critical lines" or "genz-malik".
+// "critical lines", "jump lines" or "genz-malik".
 const char* exactOuterMethodName(ExactOuterMethod method);
 
 ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& options = {});

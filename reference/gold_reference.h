@@ -84,7 +84,8 @@ struct GoldReference {
   std::uint64_t kernelEvaluations = 0;
   std::uint64_t receiverPoints = 0;     // exact visibility: inner integrals taken
   std::size_t shaftOccluders = 0;       // exact visibility: occluder polygons in the shaft
-  std::string outerMethod;              // exact visibility: "critical lines" or "genz-malik"
+  // exact visibility: "critical lines", "jump lines" or "genz-malik"
+  std::string outerMethod;
   std::size_t criticalSegments = 0;     // exact visibility: segments on the receiver
   std::optional<LambertCheck> lambert;
 };

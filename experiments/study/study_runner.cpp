@@ -142,6 +142,7 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
                          config.gold);
     const Eigen::MatrixXd& G = gold.coupling;
     record.goldMethod = gold.method;
+    record.goldOuterMethod = gold.outerMethod;
     record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
     record.goldMaxRelativeError = gold.couplingError.maxCoeff() / G.cwiseAbs().maxCoeff();
     record.goldConverged = gold.converged;

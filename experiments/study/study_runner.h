@@ -61,6 +61,8 @@ struct LinkRecord {
   double referenceRelativeErrorVsGold = 0.0;
   double referenceFrobeniusErrorVsGold = 0.0;
   std::string goldMethod;  // "gauss product", "exact visibility" or "dense stratified"
+  // Exact visibility: its outer integration, "critical lines", "jump lines" or "genz-malik".
+  std::string goldOuterMethod;
   double goldRelativeError = 0.0;  // the gold's own error estimate of K[0][0] / K[0][0]
   // The gold's largest error estimate over the largest |K| entry, and whether it met its
   // tolerance.

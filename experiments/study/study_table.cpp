@@ -268,8 +268,11 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
                             {"occluded_not_scored", run.sceneOccludedLinks}};
   }
   if (options.gold) {
-    std::map<std::string, int> methods;
-    for (const LinkRecord& link : allLinks) ++methods[link.goldMethod];
+    std::map<std::string, int> methods, outerMethods;
+    for (const LinkRecord& link : allLinks) {
+      ++methods[link.goldMethod];
+      if (!link.goldOuterMethod.empty()) ++outerMethods[link.goldOuterMethod];
+    }
     const SummaryStatistics own =
         summarize(column(allLinks, [](const LinkRecord& l) { return l.goldRelativeError; }));
     const SummaryStatistics ownLargest = summarize(
@@ -278,6 +281,7 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
     for (const LinkRecord& link : allLinks) unconverged += link.goldConverged ? 0 : 1;
     table["gold"] = {{"options", goldOptionsToJson(config.gold)},
                      {"links_by_method", methods},
+                     {"exact_links_by_outer_method", outerMethods},
                      {"unconverged_links", unconverged},
                      {"own_relative_error", {{"mean", own.mean}, {"max", own.max}}},
                      {"own_max_error_over_largest_entry",

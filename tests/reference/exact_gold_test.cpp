@@ -513,6 +513,46 @@ TEST(ExactGold, AWallStandingOnTheReceiverTakesTheCriticalLinesAndMatchesTheClos
   }
 }
 
+TEST(ExactGold, ASlantedWallStandingOnTheReceiverTakesTheJumpLinesAndMatchesTheClosedForm) {
+  // A tall wall standing on the receiver along the slanted line from (0.3, 0) to (0.7, 1), so
+  // the jump crosses the lines and the starting grid at angles; the source lies right of the
+  // wall's plane, so points left of the foot see none of it and points right of it all of it:
+  // F = 1/2 F(right part -> source), the right part a trapezoid of area 1/2. With a floor
+  // limit too small for the critical lines, the link takes the jump lines (not Genz-Malik,
+  // whose estimate misjudges the jump); lifted off the receiver, the wall makes no jump and
+  // the link takes Genz-Malik. Forced, the jump lines also meet a tight tolerance.
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0.8, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  const std::vector<Eigen::Vector3d> right = {{0.3, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.7, 1, 0}};
+  const double expected = 0.5 * analytic::polygonToPolygonFormFactor(right, cornersOf(source));
+  for (double foot : {0.0, 0.02}) {
+    SCOPED_TRACE(foot);
+    OccluderScene scene;
+    scene.addParallelogram(Patch::make({0.1, -0.5, foot}, {0.8, 2.0, 0}, {0, 0, 1.5}, "wall"));
+    scene.commit();
+    const Link link{receiver, source, &scene};
+    ExactGoldOptions options;
+    options.tolerance = 1e-5;
+    options.maxFloorPoints = 1;
+    const ExactGold gold = exactGold(link, 0, options);
+    if (foot == 0.0) {
+      EXPECT_EQ(gold.outer, ExactOuterMethod::jumpLines);
+      EXPECT_STREQ(exactOuterMethodName(gold.outer), "jump lines");
+      EXPECT_TRUE(gold.converged);
+      EXPECT_LE(gold.formFactorError, 1e-5 * gold.formFactor);
+      EXPECT_NEAR(gold.formFactor, expected, gold.formFactorError);
+      ExactGoldOptions tight;
+      tight.outer = ExactOuterMethod::jumpLines;
+      const ExactGold forced = exactGold(link, 0, tight);
+      EXPECT_TRUE(forced.converged);
+      EXPECT_NEAR(forced.formFactor, expected, 1e-7 * expected);
+      EXPECT_NEAR(forced.formFactor, expected, forced.formFactorError);
+    } else {
+      EXPECT_EQ(gold.outer, ExactOuterMethod::genzMalik);
+    }
+  }
+}
+
 TEST(GoldReference, LinksWhoseKernelIsNotSmoothGoStraightToTheExactGold) {
   // Sharing an edge at right angles (singular along it), and a source cut by the receiver's
   // plane (the clamped cosine's discontinuity): the Gauss sequence would end unconverged at
