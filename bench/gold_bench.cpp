@@ -7,11 +7,11 @@
 //
 // Each iteration integrates the same 6 links of one kind (the first 6 candidates of seed 1
 // whose visible fraction, by a 6^4 Gauss rule, lies in (0.05, 0.95):
-// experiments/scenarios/probed_links.h); the time per link is the
-// iteration time / 6. Counters: receiver_points (exact), max_relative_error (the largest
+// experiments/scenarios/probed_links.h), or 24 for the `wide_` rows (the study's tolerance
+// only); the time per link is the iteration time / the links. Counters: receiver_points (exact), max_relative_error (the largest
 // reported error over the largest |K| entry; for dense stratified its standard error),
-// by_critical_lines (the share of links whose outer integral took the critical lines; the
-// rest took Genz-Malik, ExactGoldOptions::maxFloorPoints). The `_genz_malik` variants force
+// by_critical_lines and by_jump_lines (the shares of links whose outer integral took the
+// critical lines or the jump lines; the rest took Genz-Malik, exact_gold.h). The `_genz_malik` variants force
 // Genz-Malik on every link, for comparison.
 // The soup's exact gold is capped at 20,000 receiver points (it does not converge there).
 // unionClipper / unionBoostGeometry: the shadows' union by Clipper (the one used) and by
@@ -45,41 +45,45 @@ struct KindLinks {
   std::vector<Link> links;
 };
 
-KindLinks partialLinks(OccluderKind kind) {
+KindLinks partialLinks(OccluderKind kind, int count = kLinksPerKind) {
   KindLinks out;
-  out.drawn = probedPartialLinks(1, {kind}, kLinksPerKind);
+  out.drawn = probedPartialLinks(1, {kind}, count);
   for (const ProbedLink& drawn : out.drawn) out.links.push_back(drawn.link());
   return out;
 }
 
 void exactPerLink(benchmark::State& state, OccluderKind kind, int degree, double tolerance,
-                  ExactOuterMethod outer) {
-  const KindLinks links = partialLinks(kind);
+                  ExactOuterMethod outer, int count = kLinksPerKind) {
+  const KindLinks links = partialLinks(kind, count);
   ExactGoldOptions options;
   options.tolerance = tolerance;
   options.outer = outer;
   if (kind == OccluderKind::soup) options.maxEvaluations = 20000;
-  double points = 0.0, worst = 0.0, lines = 0.0;
+  double points = 0.0, worst = 0.0, lines = 0.0, jumps = 0.0;
   for (auto _ : state) {
     points = 0.0;
     worst = 0.0;
     lines = 0.0;
+    jumps = 0.0;
     for (const Link& link : links.links) {
       const ExactGold gold = exactGold(link, degree, options);
       points += double(gold.receiverPoints);
       lines += gold.outer == ExactOuterMethod::criticalLines ? 1.0 : 0.0;
+      jumps += gold.outer == ExactOuterMethod::jumpLines ? 1.0 : 0.0;
       worst = std::max(worst, gold.couplingError.maxCoeff() / gold.coupling.cwiseAbs().maxCoeff());
       benchmark::DoNotOptimize(gold.coupling.data());
     }
   }
   state.counters["receiver_points"] = points / double(links.links.size());
   state.counters["by_critical_lines"] = lines / double(links.links.size());
+  state.counters["by_jump_lines"] = jumps / double(links.links.size());
   state.counters["max_relative_error"] = worst;
   state.counters["links"] = double(links.links.size());
 }
 
-void densePerLink(benchmark::State& state, OccluderKind kind, int degree) {
-  const KindLinks links = partialLinks(kind);
+void densePerLink(benchmark::State& state, OccluderKind kind, int degree,
+                  int count = kLinksPerKind) {
+  const KindLinks links = partialLinks(kind, count);
   GoldOptions options;
   options.method = GoldMethod::stratified;
   options.denseStrata = 16;
@@ -129,6 +133,22 @@ constexpr ExactOuterMethod kGenzMalik = ExactOuterMethod::genzMalik;
 GOLD_BENCHMARKS(OccluderKind::oneBlocker, one_blocker);
 GOLD_BENCHMARKS(OccluderKind::severalBlockers, several_blockers);
 GOLD_BENCHMARKS(OccluderKind::slats, slats);
+// The same at the study's tolerance on 24 links of each kind (the first 6 are those above),
+// a wider sample of what the study meets: the `wide_` rows.
+constexpr int kWideLinks = 24;
+#define WIDE_GOLD_BENCHMARKS(kind, name)                                                      \
+  BENCHMARK_CAPTURE(densePerLink, wide_##name##_d0, kind, 0, kWideLinks)                      \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, wide_##name##_d0_3e4, kind, 0, 3e-4, kLines, kWideLinks)    \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(densePerLink, wide_##name##_d2, kind, 2, kWideLinks)                      \
+      ->Unit(benchmark::kMillisecond);                                                        \
+  BENCHMARK_CAPTURE(exactPerLink, wide_##name##_d2_3e4, kind, 2, 3e-4, kLines, kWideLinks)    \
+      ->Unit(benchmark::kMillisecond)
+
+WIDE_GOLD_BENCHMARKS(OccluderKind::oneBlocker, one_blocker);
+WIDE_GOLD_BENCHMARKS(OccluderKind::severalBlockers, several_blockers);
+WIDE_GOLD_BENCHMARKS(OccluderKind::slats, slats);
 BENCHMARK_CAPTURE(densePerLink, soup_d0, OccluderKind::soup, 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(exactPerLink, soup_d0_1e7_capped, OccluderKind::soup, 0, 1e-7, kLines)
     ->Unit(benchmark::kMillisecond);

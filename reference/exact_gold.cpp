@@ -36,7 +36,7 @@ struct Worker {
   bool finite = true;
 
   Worker(const Link& link, int degree, double innerAccuracy)
-      : visibility(link),
+      : visibility(link, degree == 0),
         moments(link.source, degree, innerAccuracy),
         inner(std::size_t(basisFunctionCount(degree))),
         receiverValues(std::size_t(basisFunctionCount(degree))) {}

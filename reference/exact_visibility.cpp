@@ -136,7 +136,52 @@ double ringArea(const SourceRing& ring) {
   return 0.5 * twice;
 }
 
-ExactVisibility::ExactVisibility(const Link& link) : link_(link) {
+void intersectConvexRings(const SourceRing& a, const SourceRing& b, SourceRing& out,
+                          SourceRing& scratch) {
+  out = a;
+  for (std::size_t i = 0, n = b.size(); i < n && out.size() >= 3; ++i) {
+    const Eigen::Vector2d& from = b[i];
+    const Eigen::Vector2d edge = b[(i + 1) % n] - from;
+    if (edge.x() == 0.0 && edge.y() == 0.0) continue;
+    // Positive on the inner (left) side of the edge.
+    auto side = [&](const Eigen::Vector2d& p) {
+      return edge.x() * (p.y() - from.y()) - edge.y() * (p.x() - from.x());
+    };
+    scratch.clear();
+    const std::size_t m = out.size();
+    double previousSide = side(out[m - 1]);
+    for (std::size_t k = 0; k < m; ++k) {
+      const Eigen::Vector2d& previous = out[(k + m - 1) % m];
+      const Eigen::Vector2d& current = out[k];
+      const double currentSide = side(current);
+      if ((previousSide > 0.0 && currentSide < 0.0) || (previousSide < 0.0 && currentSide > 0.0)) {
+        scratch.push_back(previous + (previousSide / (previousSide - currentSide)) * (current - previous));
+      }
+      if (currentSide >= 0.0) scratch.push_back(current);
+      previousSide = currentSide;
+    }
+    std::swap(out, scratch);
+  }
+}
+
+namespace {
+
+// Whether every edge of the ring is at least `shortest` long (in its larger coordinate).
+bool edgesAtLeast(const SourceRing& ring, double shortest) {
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+    if (!((ring[(i + 1) % n] - ring[i]).cwiseAbs().maxCoeff() >= shortest)) return false;
+  }
+  return true;
+}
+
+// At most this many rings (intersections of overlapping shadows) by inclusion-exclusion;
+// beyond, the union by Clipper.
+constexpr std::size_t kMaxInclusionExclusionRings = 64;
+
+}  // namespace
+
+ExactVisibility::ExactVisibility(const Link& link, bool inclusionExclusion)
+    : link_(link), inclusionExclusion_(inclusionExclusion) {
   const Patch& source = link.source;
   const double uu = source.edgeU.dot(source.edgeU), uv = source.edgeU.dot(source.edgeV),
                vv = source.edgeV.dot(source.edgeV);
@@ -308,6 +353,7 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   }
   if (overlapping == 0) return;
   ++statistics_.unions;
+  if (inclusionExclusion_ && subtractOverlapping(shadowCount, out)) return;
   // The paths keep their storage from point to point too (Clipper's own edges do not).
   ClipperLib::Paths& paths = clipperPaths_;
   paths.resize(overlapping);
@@ -336,6 +382,75 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
   if (total < 0.0) {
     for (std::size_t r = first; r < out.count(); ++r) out.setSign(r, 1.0);
   }
+}
+
+bool ExactVisibility::subtractOverlapping(std::size_t shadowCount, VisibleRings& out) {
+  // The union of the overlapping shadows P_i by inclusion-exclusion: its integral is the sum
+  // over every set S of them whose common part has area, of (-1)^(|S| + 1) times the
+  // integral over that part, a convex ring (the intersection of convex rings). Subtracted
+  // from S', the sets of odd size count -1, those of even size +1. The sets are those of a
+  // depth-first search, each extended by later shadows only while its part overlaps them.
+  // Rings with an edge shorter than 1e-8 of the shadows' extent (a vertex repeated where an
+  // occluder's vertex lies on a pyramid plane) have no direction to cut by, and too many
+  // sets cost more than the union: then Clipper forms the union instead (false).
+  overlapping_.clear();
+  Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
+  for (std::size_t i = 0; i < shadowCount; ++i) {
+    if (!overlaps_[i]) continue;
+    overlapping_.push_back(i);
+    low = low.cwiseMin(shadowBounds_[i].head<2>());
+    high = high.cwiseMax(shadowBounds_[i].tail<2>());
+  }
+  const double shortest = 1e-8 * (high - low).maxCoeff();
+  for (std::size_t i : overlapping_) {
+    if (!edgesAtLeast(shadows_[i], shortest)) return false;
+  }
+  const std::size_t first = out.count();
+  const std::size_t n = overlapping_.size();
+  if (intersections_.size() < n + 1) intersections_.resize(n + 1);
+  // One set per stack entry: (its last shadow's place in overlapping_, its depth); the
+  // set's part is intersections_[depth].
+  std::vector<std::pair<std::size_t, std::size_t>>& stack = setStack_;
+  stack.clear();
+  for (std::size_t k = n; k-- > 0;) stack.push_back({k, 0});
+  bool fits = true;
+  // Depth-first: a set's part is built from its parent's, which stays in intersections_ at
+  // the depth below until every extension of the parent is done.
+  while (!stack.empty() && fits) {
+    const auto [k, depth] = stack.back();
+    stack.pop_back();
+    const SourceRing& shadow = shadows_[overlapping_[k]];
+    SourceRing& part = intersections_[depth + 1];
+    if (depth == 0) {
+      part = shadow;
+    } else {
+      const Eigen::Vector4d& bounds = shadowBounds_[overlapping_[k]];
+      const SourceRing& parent = intersections_[depth];
+      Eigen::Vector2d partLow = parent.front(), partHigh = parent.front();
+      for (const auto& p : parent) {
+        partLow = partLow.cwiseMin(p);
+        partHigh = partHigh.cwiseMax(p);
+      }
+      if (!(partLow.x() < bounds[2] && bounds[0] < partHigh.x() && partLow.y() < bounds[3] &&
+            bounds[1] < partHigh.y())) {
+        continue;
+      }
+      intersectConvexRings(parent, shadow, part, scratchRing_);
+      if (part.size() < 3 || !(ringArea(part) > 0.0)) continue;
+    }
+    if (out.count() - first >= kMaxInclusionExclusionRings) {
+      fits = false;
+      break;
+    }
+    out.add(part, depth % 2 == 0 ? -1.0 : 1.0);
+    // Its extensions by later shadows, the earliest on top.
+    for (std::size_t later = n; later-- > k + 1;) stack.push_back({later, depth + 1});
+  }
+  if (!fits) {
+    out.truncate(first);
+    return false;
+  }
+  return true;
 }
 
 }  // namespace radquad

@@ -21,6 +21,7 @@
 #include <polyclipping/clipper.hpp>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -54,6 +55,8 @@ class VisibleRings {
     return rings_[count_++];
   }
   void add(const SourceRing& ring, double sign) { add(sign) = ring; }
+  // Drops the rings from `count` on (their storage is kept).
+  void truncate(std::size_t count) { count_ = std::min(count, count_); }
 
  private:
   std::vector<SourceRing> rings_;
@@ -69,7 +72,11 @@ struct ExactVisibilityStatistics {
 class ExactVisibility {
  public:
   // Keeps references to the link's patches and occluder scene; culls the occluders.
-  explicit ExactVisibility(const Link& link);
+  // Overlapping shadows: their union by inclusion-exclusion over their intersections (convex
+  // rings, more edges than the union's outline: cheaper where each edge costs little, as in
+  // Lambert's formula), or by Clipper alone (`inclusionExclusion` false: fewer edges, for
+  // the polar inner integral, whose edges cost more).
+  explicit ExactVisibility(const Link& link, bool inclusionExclusion = true);
 
   // The visible part of the source from x (on the receiver, normal link.receiver.normal).
   // Thread-compatible: one object per thread, or calls from one thread at a time.
@@ -81,7 +88,12 @@ class ExactVisibility {
   const std::vector<std::vector<Eigen::Vector3d>>& candidates() const { return candidates_; }
 
  private:
+  // Subtracts the union of the shadows that overlap another (overlaps_) by inclusion-exclusion
+  // over their intersections; false (and `out` as it was) when Clipper must form it.
+  bool subtractOverlapping(std::size_t shadowCount, VisibleRings& out);
+
   const Link& link_;
+  bool inclusionExclusion_;
   Eigen::Vector3d dualU_, dualV_;  // (y - origin) . dualU = u for y in the source's plane
   std::vector<std::vector<Eigen::Vector3d>> candidates_;
   std::vector<double> candidateReach_;  // polygonReach of each candidate
@@ -95,6 +107,12 @@ class ExactVisibility {
   std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
   std::vector<Eigen::Vector4d> shadowBounds_;
   std::vector<char> overlaps_;  // per shadow: whether it overlaps another
+  // Inclusion-exclusion over the overlapping shadows: their indices, and per depth the
+  // intersection of the shadows chosen so far.
+  std::vector<std::size_t> overlapping_;
+  std::vector<SourceRing> intersections_;
+  SourceRing scratchRing_;
+  std::vector<std::pair<std::size_t, std::size_t>> setStack_;
   ClipperLib::Paths clipperPaths_, clipperUnion_;
 };
 
@@ -127,5 +145,11 @@ bool convexRingsOverlap(const SourceRing& a, const SourceRing& b);
 
 // Signed area of a ring in the plane (positive when counter-clockwise).
 double ringArea(const SourceRing& ring);
+
+// The intersection of two convex counter-clockwise rings: `a` clipped to the inner side of
+// every edge of `b` (Sutherland-Hodgman), into `out` (`scratch` is working storage). May come
+// out with fewer than 3 vertices or no area when they only touch.
+void intersectConvexRings(const SourceRing& a, const SourceRing& b, SourceRing& out,
+                          SourceRing& scratch);
 
 }  // namespace radquad

@@ -268,10 +268,10 @@ struct HalfwaySetup {
 
   // What x sees of the source past `scene`'s occluders, by the exact visibility and
   // Lambert's formula; `unions` and `rings` report how it was formed.
-  double visibleFormFactor(const OccluderScene& scene, std::size_t& unions,
-                           std::size_t& rings) const {
+  double visibleFormFactor(const OccluderScene& scene, std::size_t& unions, std::size_t& rings,
+                           bool inclusionExclusion = true) const {
     const Link link{receiver, source, &scene};
-    ExactVisibility visibility(link);
+    ExactVisibility visibility(link, inclusionExclusion);
     VisibleRings visible;
     visibility.visibleRings(x, visible);
     unions = visibility.statistics().unions;
@@ -281,8 +281,8 @@ struct HalfwaySetup {
 };
 
 TEST(ExactVisibility, OverlappingAndSeparateShadowsLeaveWhatInclusionExclusionLeaves) {
-  // Three square occluders halfway: two shadows overlap (Clipper's union), the third
-  // overlaps neither (counted as it is).
+  // Three square occluders halfway: two shadows overlap (their union by inclusion-exclusion:
+  // both, and their intersection added back), the third overlaps neither (counted as it is).
   OccluderScene scene;
   scene.addParallelogram(Patch::make({0.30, 0.30, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "a"));
   scene.addParallelogram(Patch::make({0.40, 0.35, 0.5}, {0.10, 0, 0}, {0, 0.15, 0}, "b"));
@@ -296,8 +296,53 @@ TEST(ExactVisibility, OverlappingAndSeparateShadowsLeaveWhatInclusionExclusionLe
   std::size_t unions = 0, rings = 0;
   EXPECT_NEAR(setup.visibleFormFactor(scene, unions, rings), expected, 1e-12);
   EXPECT_EQ(unions, 1u);
-  EXPECT_EQ(rings, 3u);  // the source, the separate shadow, the union of the others
+  EXPECT_EQ(rings, 5u);  // the source, the separate shadow, the other two, their intersection
   EXPECT_LT(expected, 0.9 * setup.toSource());
+}
+
+TEST(ExactVisibility, ThreeMutuallyOverlappingShadowsLeaveWhatInclusionExclusionLeaves) {
+  // Shadows [0.1, 0.4]^2, [0.3, 0.6] x [0.2, 0.5] and [0.2, 0.5] x [0.3, 0.7]: every pair
+  // overlaps and so do all three. The rectangles' form factors by the closed form, combined
+  // by hand: the source's, minus the three, plus the three pairs' overlaps, minus the triple.
+  OccluderScene scene;
+  scene.addParallelogram(Patch::make({0.30, 0.30, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "a"));
+  scene.addParallelogram(Patch::make({0.40, 0.35, 0.5}, {0.15, 0, 0}, {0, 0.15, 0}, "b"));
+  scene.addParallelogram(Patch::make({0.35, 0.40, 0.5}, {0.15, 0, 0}, {0, 0.20, 0}, "c"));
+  scene.commit();
+  const HalfwaySetup setup;
+  const double expected =
+      setup.toSource() - setup.toRectangle(0.1, 0.4, 0.1, 0.4) -
+      setup.toRectangle(0.3, 0.6, 0.2, 0.5) - setup.toRectangle(0.2, 0.5, 0.3, 0.7) +
+      setup.toRectangle(0.3, 0.4, 0.2, 0.4) + setup.toRectangle(0.2, 0.4, 0.3, 0.4) +
+      setup.toRectangle(0.3, 0.5, 0.3, 0.5) - setup.toRectangle(0.3, 0.4, 0.3, 0.4);
+  std::size_t unions = 0, rings = 0;
+  EXPECT_NEAR(setup.visibleFormFactor(scene, unions, rings), expected, 1e-12);
+  EXPECT_EQ(unions, 1u);
+  EXPECT_EQ(rings, 8u);  // the source, three shadows, three pairs, the triple
+  // Clipper's union instead: one ring for the three.
+  EXPECT_NEAR(setup.visibleFormFactor(scene, unions, rings, false), expected, 1e-12);
+  EXPECT_EQ(rings, 2u);
+}
+
+TEST(ExactVisibility, ConvexRingsIntersectAsTheirShapesDo) {
+  // Overlapping squares give their common square; a ring inside another gives itself; rings
+  // that only touch or lie apart give nothing with area.
+  const SourceRing square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const SourceRing shifted = {{0.5, 0.25}, {1.5, 0.25}, {1.5, 1.25}, {0.5, 1.25}};
+  const SourceRing inner = {{0.2, 0.2}, {0.6, 0.3}, {0.4, 0.7}};
+  const SourceRing touching = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
+  const SourceRing apart = {{2, 0}, {3, 0}, {3, 1}, {2, 1}};
+  SourceRing out, scratch;
+  intersectConvexRings(square, shifted, out, scratch);
+  EXPECT_NEAR(ringArea(out), 0.5 * 0.75, 1e-15);
+  intersectConvexRings(shifted, square, out, scratch);
+  EXPECT_NEAR(ringArea(out), 0.5 * 0.75, 1e-15);
+  intersectConvexRings(square, inner, out, scratch);
+  EXPECT_NEAR(ringArea(out), ringArea(inner), 1e-15);
+  intersectConvexRings(square, touching, out, scratch);
+  EXPECT_FALSE(out.size() >= 3 && ringArea(out) > 0.0);
+  intersectConvexRings(square, apart, out, scratch);
+  EXPECT_LT(out.size(), 3u);
 }
 
 TEST(ExactVisibility, OccluderVertexOnAPyramidPlaneIsSubtractedOnce) {

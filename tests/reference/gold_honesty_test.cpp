@@ -139,7 +139,9 @@ TEST(GoldHonesty, WhereAnOccluderStandsOnTheReceiverTheJumpLinesKeepTheirEstimat
     std::printf("degree %d, genz-malik: worst actual error %.3g of the estimate\n", degree,
                 blind.worstRatio);
     // The check has teeth where Genz-Malik's miss is largest.
-    if (degree == 2) EXPECT_EQ(blind.failures, 1);
+    if (degree == 2) {
+      EXPECT_EQ(blind.failures, 1);
+    }
   }
 }
 
