@@ -36,6 +36,7 @@ constexpr int kRadialPoints = 16;
 // source as a twentieth of its size (tests/reference/exact_gold_test.cpp), where the
 // polynomial weights cancel most.
 int edgePointsFor(double accuracy) { return accuracy < 1e-6 ? 12 : 8; }
+constexpr int kMaxEdgePoints = 12;
 
 // Where R / H reaches this, the radial moments of degrees <= 3 (powers <= 8) are taken by
 // the recurrences; below, by a Gauss rule (scaledRadialMoments, laneRadialMoments).
@@ -443,6 +444,8 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
   const int maxPower = 2 * d + 2;
   const GaussLegendreRule& rule = edgeRule_;
   const int edgePoints = int(rule.nodes.size());
+  const double* nodes = rule.nodes.data();
+  const double* weights = rule.weights.data();
   const double kernelScale = H / std::numbers::pi;
 
   double J[kMaxPower + 1];
@@ -493,8 +496,10 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
       if (length == 0.0) continue;
       const Eigen::Vector2d direction = (b - a) / length;
       const double distance = a.x() * direction.y() - a.y() * direction.x();  // signed
-      const double scale = std::max({a.norm(), b.norm(), H});
-      if (std::fabs(distance) <= 1e-15 * scale) continue;  // the triangle has no area
+      // The triangle has no area: |distance| <= 1e-15 max(|a|, |b|, H), in squares.
+      if (distance * distance <= 1e-30 * std::max({a.squaredNorm(), b.squaredNorm(), H * H})) {
+        continue;
+      }
       const Eigen::Vector2d closest = a - a.dot(direction) * direction;
       const double sa = a.dot(direction), sb = sa + length;
       // Signed triangle (p0, a, b): integrand along the edge |d| / R^2 Phi(R), sign of d.
@@ -517,22 +522,26 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
           stack[top++] = s1;
           continue;
         }
+        // The piece's nodes in one loop over them (vector instructions), then to the batch.
+        const double factor = visible.sign(r) * sign * std::fabs(distance) * (s1 - s0);
+        double wx[kMaxEdgePoints], wy[kMaxEdgePoints], weight[kMaxEdgePoints];
         for (int k = 0; k < edgePoints; ++k) {
-          const double s = s0 + (s1 - s0) * rule.nodes[k];
-          const Eigen::Vector2d w = closest + s * direction;
-          const double R2 = w.squaredNorm();
-          const double weight =
-              visible.sign(r) * sign * std::fabs(distance) / R2 * (s1 - s0) * rule.weights[k];
+          const double s = s0 + (s1 - s0) * nodes[k];
+          wx[k] = closest.x() + s * direction.x();
+          wy[k] = closest.y() + s * direction.y();
+          weight[k] = factor * weights[k] / (wx[k] * wx[k] + wy[k] * wy[k]);
+        }
+        for (int k = 0; k < edgePoints; ++k) {
           if constexpr (kBatched) {
-            batch.wx[batch.count] = w.x();
-            batch.wy[batch.count] = w.y();
-            batch.weight[batch.count] = weight;
+            batch.wx[batch.count] = wx[k];
+            batch.wy[batch.count] = wy[k];
+            batch.weight[batch.count] = weight[k];
             if (++batch.count == kLanes) {
               accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, loose_, laneT);
               batch.count = 0;
             }
           } else {
-            node(w, weight);
+            node(Eigen::Vector2d(wx[k], wy[k]), weight[k]);
           }
         }
       }
