@@ -15,11 +15,37 @@ constexpr double kClipperScale = 17592186044416.0;
 // polygon through x itself casts a shadow of zero area.
 constexpr double kApexMargin = 1e-12;
 
+// planeSlack from the plane's |normal|_1 and |offset|.
+double slackOf(double normalNorm, double offsetMagnitude, double reach) {
+  return 64.0 * std::numeric_limits<double>::epsilon() * (normalNorm * reach + offsetMagnitude);
+}
+
+// Sutherland-Hodgman for one half-space, in 2D or 3D: the vertices of `polygon` whose
+// height(p) is >= 0 and the crossings of its edges where the height changes sign, in order,
+// into `out`. A vertex of height exactly 0 is kept and ends no crossing.
+template <class Point, class Height>
+void clipToHalfSpace(const std::vector<Point>& polygon, const Height& heightOf,
+                     std::vector<Point>& out) {
+  out.clear();
+  const std::size_t n = polygon.size();
+  if (n == 0) return;
+  double previousHeight = heightOf(polygon[n - 1]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point& previous = polygon[(i + n - 1) % n];
+    const Point& current = polygon[i];
+    const double height = heightOf(current);
+    if ((previousHeight > 0.0 && height < 0.0) || (previousHeight < 0.0 && height > 0.0)) {
+      out.push_back(previous + (previousHeight / (previousHeight - height)) * (current - previous));
+    }
+    if (height >= 0.0) out.push_back(current);
+    previousHeight = height;
+  }
+}
+
 }  // namespace
 
 double planeSlack(const Eigen::Vector3d& normal, double offset, double reach) {
-  return 64.0 * std::numeric_limits<double>::epsilon() *
-         (normal.lpNorm<1>() * reach + std::abs(offset));
+  return slackOf(normal.lpNorm<1>(), std::abs(offset), reach);
 }
 
 double polygonReach(const std::vector<Eigen::Vector3d>& polygon) {
@@ -30,26 +56,15 @@ double polygonReach(const std::vector<Eigen::Vector3d>& polygon) {
 
 void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
                        double offset, double slack, std::vector<Eigen::Vector3d>& out) {
-  out.clear();
-  const std::size_t n = polygon.size();
-  if (n == 0) return;
   // A height within the slack is rounding: the vertex lies on the plane, is kept, and is
   // never the end of a crossing (so no vertex comes out twice).
-  auto heightOf = [&](const Eigen::Vector3d& p) {
-    const double height = normal.dot(p) + offset;
-    return std::abs(height) <= slack ? 0.0 : height;
-  };
-  double previousHeight = heightOf(polygon[n - 1]);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d& previous = polygon[(i + n - 1) % n];
-    const Eigen::Vector3d& current = polygon[i];
-    const double height = heightOf(current);
-    if ((previousHeight > 0.0 && height < 0.0) || (previousHeight < 0.0 && height > 0.0)) {
-      out.push_back(previous + (previousHeight / (previousHeight - height)) * (current - previous));
-    }
-    if (height >= 0.0) out.push_back(current);
-    previousHeight = height;
-  }
+  clipToHalfSpace(
+      polygon,
+      [&](const Eigen::Vector3d& p) {
+        const double height = normal.dot(p) + offset;
+        return std::abs(height) <= slack ? 0.0 : height;
+      },
+      out);
 }
 
 void clipConvexPolygon(const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& normal,
@@ -144,22 +159,12 @@ void intersectConvexRings(const SourceRing& a, const SourceRing& b, SourceRing& 
     const Eigen::Vector2d edge = b[(i + 1) % n] - from;
     if (edge.x() == 0.0 && edge.y() == 0.0) continue;
     // Positive on the inner (left) side of the edge.
-    auto side = [&](const Eigen::Vector2d& p) {
-      return edge.x() * (p.y() - from.y()) - edge.y() * (p.x() - from.x());
-    };
-    scratch.clear();
-    const std::size_t m = out.size();
-    double previousSide = side(out[m - 1]);
-    for (std::size_t k = 0; k < m; ++k) {
-      const Eigen::Vector2d& previous = out[(k + m - 1) % m];
-      const Eigen::Vector2d& current = out[k];
-      const double currentSide = side(current);
-      if ((previousSide > 0.0 && currentSide < 0.0) || (previousSide < 0.0 && currentSide > 0.0)) {
-        scratch.push_back(previous + (previousSide / (previousSide - currentSide)) * (current - previous));
-      }
-      if (currentSide >= 0.0) scratch.push_back(current);
-      previousSide = currentSide;
-    }
+    clipToHalfSpace(
+        out,
+        [&](const Eigen::Vector2d& p) {
+          return edge.x() * (p.y() - from.y()) - edge.y() * (p.x() - from.x());
+        },
+        scratch);
     std::swap(out, scratch);
   }
 }
@@ -281,7 +286,7 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     const double reach = candidateReach_[c];
     slack_.clear();
     for (const auto& [norm, offset] : planeNorms_) {
-      slack_.push_back(64.0 * std::numeric_limits<double>::epsilon() * (norm * reach + offset));
+      slack_.push_back(slackOf(norm, offset, reach));
     }
     slack_[1] = 0.0;  // the cut below the apex keeps every projection's depth positive
     // One pass over the candidate's own vertices: a plane with every vertex outside rejects
@@ -407,48 +412,49 @@ bool ExactVisibility::subtractOverlapping(std::size_t shadowCount, VisibleRings&
   }
   const std::size_t first = out.count();
   const std::size_t n = overlapping_.size();
-  if (intersections_.size() < n + 1) intersections_.resize(n + 1);
+  if (intersections_.size() < n + 1) {
+    intersections_.resize(n + 1);
+    intersectionBounds_.resize(n + 1);
+  }
   // One set per stack entry: (its last shadow's place in overlapping_, its depth); the
-  // set's part is intersections_[depth].
+  // set's part is intersections_[depth + 1], with its bounding box (low u, low v, high u,
+  // high v) in intersectionBounds_.
   std::vector<std::pair<std::size_t, std::size_t>>& stack = setStack_;
   stack.clear();
   for (std::size_t k = n; k-- > 0;) stack.push_back({k, 0});
-  bool fits = true;
   // Depth-first: a set's part is built from its parent's, which stays in intersections_ at
   // the depth below until every extension of the parent is done.
-  while (!stack.empty() && fits) {
+  while (!stack.empty()) {
     const auto [k, depth] = stack.back();
     stack.pop_back();
     const SourceRing& shadow = shadows_[overlapping_[k]];
+    const Eigen::Vector4d& bounds = shadowBounds_[overlapping_[k]];
     SourceRing& part = intersections_[depth + 1];
+    Eigen::Vector4d& partBounds = intersectionBounds_[depth + 1];
     if (depth == 0) {
       part = shadow;
+      partBounds = bounds;
     } else {
-      const Eigen::Vector4d& bounds = shadowBounds_[overlapping_[k]];
-      const SourceRing& parent = intersections_[depth];
-      Eigen::Vector2d partLow = parent.front(), partHigh = parent.front();
-      for (const auto& p : parent) {
-        partLow = partLow.cwiseMin(p);
-        partHigh = partHigh.cwiseMax(p);
-      }
-      if (!(partLow.x() < bounds[2] && bounds[0] < partHigh.x() && partLow.y() < bounds[3] &&
-            bounds[1] < partHigh.y())) {
+      const Eigen::Vector4d& parentBounds = intersectionBounds_[depth];
+      if (!(parentBounds[0] < bounds[2] && bounds[0] < parentBounds[2] &&
+            parentBounds[1] < bounds[3] && bounds[1] < parentBounds[3])) {
         continue;
       }
-      intersectConvexRings(parent, shadow, part, scratchRing_);
+      intersectConvexRings(intersections_[depth], shadow, part, scratchRing_);
       if (part.size() < 3 || !(ringArea(part) > 0.0)) continue;
+      partBounds = {part.front().x(), part.front().y(), part.front().x(), part.front().y()};
+      for (const auto& p : part) {
+        partBounds = {std::min(partBounds[0], p.x()), std::min(partBounds[1], p.y()),
+                      std::max(partBounds[2], p.x()), std::max(partBounds[3], p.y())};
+      }
     }
     if (out.count() - first >= kMaxInclusionExclusionRings) {
-      fits = false;
-      break;
+      out.truncate(first);
+      return false;
     }
     out.add(part, depth % 2 == 0 ? -1.0 : 1.0);
     // Its extensions by later shadows, the earliest on top.
     for (std::size_t later = n; later-- > k + 1;) stack.push_back({later, depth + 1});
-  }
-  if (!fits) {
-    out.truncate(first);
-    return false;
   }
   return true;
 }

@@ -111,6 +111,7 @@ class ExactVisibility {
   // intersection of the shadows chosen so far.
   std::vector<std::size_t> overlapping_;
   std::vector<SourceRing> intersections_;
+  std::vector<Eigen::Vector4d> intersectionBounds_;  // their boxes, as shadowBounds_
   SourceRing scratchRing_;
   std::vector<std::pair<std::size_t, std::size_t>> setStack_;
   ClipperLib::Paths clipperPaths_, clipperUnion_;

@@ -234,6 +234,16 @@ void laneRadialMoments(const double* X, double from, double (&j)[P + 1][kLanes])
   }
 }
 
+// The tight form (12 points up to 0.85) or the loose one (8 points up to 0.15).
+template <int P>
+void laneRadialMoments(const double* X, bool loose, double (&j)[P + 1][kLanes]) {
+  if (loose) {
+    laneRadialMoments<P, 8>(X, kLooseRecurrenceFrom, j);
+  } else {
+    laneRadialMoments<P, 12>(X, kRecurrenceFrom, j);
+  }
+}
+
 // `batch` holds kLanes nodes (those past its count padded by the caller: pad()).
 template <int D>
 void accumulateBatch(const NodeBatch& batch, double H, double a0, double nx, double ny,
@@ -254,11 +264,7 @@ void accumulateBatch(const NodeBatch& batch, double H, double a0, double nx, dou
     X[k] = invH / inverseR;
   }
   double j[P + 1][kLanes];
-  if (loose) {
-    laneRadialMoments<P, 8>(X, kLooseRecurrenceFrom, j);
-  } else {
-    laneRadialMoments<P, 12>(X, kRecurrenceFrom, j);
-  }
+  laneRadialMoments<P>(X, loose, j);
   // J_m = H^(m-3) j_m; Q_k = weight (a0 J_(k+1) + a1 J_(k+2)); T[k][l] += su^k sv^l Q_(k+l).
   double Q[2 * D + 1][kLanes];
   double scale = invH * invH;  // H^(m-2) at m = 0: the scale of J_(m+1)
@@ -322,10 +328,10 @@ void laneRadialMoments(const double* X, int maxPower, double* out, bool loose) {
     }
   };
   switch (maxPower) {
-    case 2: { double j[3][kLanes]; loose ? laneRadialMoments<2, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<2, 12>(X, kRecurrenceFrom, j); return copy(j); }
-    case 4: { double j[5][kLanes]; loose ? laneRadialMoments<4, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<4, 12>(X, kRecurrenceFrom, j); return copy(j); }
-    case 6: { double j[7][kLanes]; loose ? laneRadialMoments<6, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<6, 12>(X, kRecurrenceFrom, j); return copy(j); }
-    case 8: { double j[9][kLanes]; loose ? laneRadialMoments<8, 8>(X, kLooseRecurrenceFrom, j) : laneRadialMoments<8, 12>(X, kRecurrenceFrom, j); return copy(j); }
+    case 2: { double j[3][kLanes]; laneRadialMoments<2>(X, loose, j); return copy(j); }
+    case 4: { double j[5][kLanes]; laneRadialMoments<4>(X, loose, j); return copy(j); }
+    case 6: { double j[7][kLanes]; laneRadialMoments<6>(X, loose, j); return copy(j); }
+    case 8: { double j[9][kLanes]; laneRadialMoments<8>(X, loose, j); return copy(j); }
     default: throw InputError("laneRadialMoments: maxPower must be 2, 4, 6 or 8");
   }
 }
@@ -400,8 +406,8 @@ double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d
       }
     }
   }
-  const double total = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
-                       ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+  double total = 0.0;
+  sumLanes(lanes, 1, &total);
   return total / (2.0 * std::numbers::pi);
 }
 
