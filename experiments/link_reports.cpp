@@ -69,6 +69,7 @@ nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options)
     out["shaft_occluders"] = gold.shaftOccluders;
     out["outer_method"] = gold.outerMethod;
     out["critical_segments"] = gold.criticalSegments;
+    out["unoccluded_apart"] = gold.unoccludedApart;
   }
   if (gold.lambert) {
     const LambertCheck& check = *gold.lambert;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <functional>
 #include <thread>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "kernel/input_error.h"
@@ -49,6 +51,9 @@ struct OuterIntegrand {
   double scale;  // sqrt(A_r / A_s)
   tbb::enumerable_thread_specific<Worker> workers;
   std::uint64_t points = 0;
+  // Integrate minus the shadows' union alone, leaving out S' (the source in front of the
+  // receiver's plane, the same polygon from every receiver point): the unoccluded part apart.
+  bool shadowsOnly = false;
   // Progress (ExactGoldOptions::progress), from the calling thread.
   std::function<void(std::uint64_t, double)> progress;
   ProgressThrottle throttle;
@@ -71,6 +76,7 @@ struct OuterIntegrand {
   void evaluate(Worker& worker, double s, double t, double* out, double* inner = nullptr) const {
     const Eigen::Vector3d x = link.receiver.pointAt(s, t);
     worker.visibility.visibleRings(x, worker.rings);
+    if (shadowsOnly) worker.rings.dropFirst();
     worker.moments.compute(x, link.receiver.normal, worker.rings, worker.inner.data());
     expand(worker.receiverValues.data(), s, t, worker.inner.data(), out);
     for (int b = 0; b < functions; ++b) worker.finite = worker.finite && std::isfinite(worker.inner[b]);
@@ -147,6 +153,13 @@ class CriticalLineCubature {
     return points;
   }
 
+  // A part of K known beforehand (the unoccluded part, with its own error): the run then
+  // integrates the rest to `share` of the tolerance, relative to the whole K's largest entry.
+  void setBaseline(std::vector<double> baseline, double share) {
+    baseline_ = std::move(baseline);
+    share_ = share;
+  }
+
   // value, error: row-major (a * n + b). Returns whether the tolerance was met.
   bool run(std::vector<double>& value, std::vector<double>& error) {
     // The inner lines take an absolute tolerance, a share of tolerance * max |K|: K's size
@@ -156,11 +169,11 @@ class CriticalLineCubature {
     double scale = estimateScale();
     std::vector<std::size_t> all(pieces.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
-    evaluateOuter(pieces, all, options_.innerShare * options_.tolerance * scale);
+    evaluateOuter(pieces, all, options_.innerShare * share_ * options_.tolerance * scale);
     for (;;) {
       sumPieces(pieces, values_, value, error);
-      scale = largestAbs(value);
-      const double target = options_.tolerance * scale;
+      scale = largestWithBaseline(value);
+      const double target = share_ * options_.tolerance * scale;
       if (largestAbs(error) <= target) return true;
       if (points_ >= options_.maxEvaluations) return false;
       const double innerTolerance = options_.innerShare * target;
@@ -195,6 +208,16 @@ class CriticalLineCubature {
     return breaks;
   }
 
+  // max |baseline + value|.
+  double largestWithBaseline(const std::vector<double>& value) const {
+    if (baseline_.empty()) return largestAbs(value);
+    double largest = 0.0;
+    for (std::size_t v = 0; v < value.size(); ++v) {
+      largest = std::max(largest, std::abs(baseline_[v] + value[v]));
+    }
+    return largest;
+  }
+
   double estimateScale() {
     const GaussLegendreRule& rule = gaussLegendreUnit(16);
     const std::size_t n = rule.nodes.size();
@@ -214,7 +237,7 @@ class CriticalLineCubature {
     for (const auto& row : rows) {
       for (std::size_t v = 0; v < values_; ++v) total[v] += row[v];
     }
-    return largestAbs(total);
+    return largestWithBaseline(total);
   }
 
   // The lines of every piece listed in `fresh` (one per point of the pair), computed in
@@ -307,6 +330,85 @@ class CriticalLineCubature {
   std::size_t values_;
   std::vector<KronrodPiece> initial_;
   std::uint64_t points_ = 0;
+  std::vector<double> baseline_;
+  double share_ = 1.0;
+};
+
+// Whether every receiver point lies strictly in front of the source's plane (the receiver is
+// a parallelogram: its corners decide). Then S', the source clipped by the receiver's plane,
+// is the same polygon from every receiver point and its integral is analytic over the receiver.
+bool receiverInFrontOfSource(const Link& link) {
+  for (const Eigen::Vector3d& corner : link.receiver.corners()) {
+    if (!(link.source.normal.dot(corner - link.source.origin) > 0.0)) return false;
+  }
+  return true;
+}
+
+// K's unoccluded part, the outer integral of the inner integrals over S' alone (the link
+// without its occluders): analytic over the receiver when it lies in front of the source's
+// plane, so Gauss-Legendre products of rising order converge exponentially. The error given
+// is the difference of the last two orders, a bound on the coarser one (conservative for the
+// finer one, returned); an order is accepted from 8 points per axis on, so that at least
+// three orders were seen.
+class UnoccludedPart {
+ public:
+  UnoccludedPart(const Link& link, int degree, double innerTolerance)
+      : bare_{link.receiver, link.source, nullptr},
+        integrand_(bare_, degree, innerTolerance),
+        values_(std::size_t(integrand_.functions * integrand_.functions)) {}
+
+  // Runs the next orders until every entry's error is at most min(relative * the largest
+  // |entry|, absolute); false when the last order is reached first.
+  bool refine(double relative, double absolute) {
+    for (;;) {
+      if (next_ > 0 && kOrders[next_ - 1] >= 8 &&
+          largestAbs(error) <= std::min(relative * largestAbs(value), absolute)) {
+        return true;
+      }
+      if (next_ == std::size(kOrders)) return false;
+      std::vector<double> coarser = std::move(value);
+      value = product(kOrders[next_++]);
+      if (coarser.empty()) {
+        error.assign(values_, std::numeric_limits<double>::infinity());
+      } else {
+        for (std::size_t v = 0; v < values_; ++v) error[v] = std::abs(value[v] - coarser[v]);
+      }
+    }
+  }
+
+  std::vector<double> value, error;
+  std::uint64_t points() const { return integrand_.points; }
+
+ private:
+  static constexpr int kOrders[] = {4, 6, 8, 12, 16, 24, 32};
+
+  std::vector<double> product(int n) {
+    const GaussLegendreRule& rule = gaussLegendreUnit(n);
+    std::vector<double> points(2 * std::size_t(n) * std::size_t(n));
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        points[2 * std::size_t(i * n + j)] = rule.nodes[std::size_t(i)];
+        points[2 * std::size_t(i * n + j) + 1] = rule.nodes[std::size_t(j)];
+      }
+    }
+    std::vector<double> out(std::size_t(n) * std::size_t(n) * values_);
+    evaluateBatch(integrand_, std::size_t(n) * std::size_t(n), points.data(), out.data());
+    if (!integrand_.finite()) throw ComputationError("exact gold: the inner integral was not finite");
+    std::vector<double> sum(values_, 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double w = rule.weights[std::size_t(i)] * rule.weights[std::size_t(j)];
+        const double* f = out.data() + std::size_t(i * n + j) * values_;
+        for (std::size_t v = 0; v < values_; ++v) sum[v] += w * f[v];
+      }
+    }
+    return sum;
+  }
+
+  Link bare_;
+  OuterIntegrand integrand_;
+  std::size_t values_;
+  std::size_t next_ = 0;
 };
 
 }  // namespace
@@ -328,6 +430,28 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   const unsigned values = unsigned(integrand.functions * integrand.functions);
   std::vector<double> value(values), error(values);
   ExactGold gold;
+  // The shaft's occluders as one worker culled them (instead of culling once more).
+  const std::vector<std::vector<Eigen::Vector3d>>& candidates =
+      integrand.workers.local().visibility.candidates();
+  // The unoccluded part apart (degree >= 1; exact_gold.h): K = K_free + K_rest, K_rest the
+  // integral over minus the shadows' union. K_free first, to a twentieth of the tolerance of
+  // its own largest entry; K_rest then to kRestShare of the tolerance of the whole's largest
+  // entry; K_free's error is then held to the rest of the tolerance (below).
+  constexpr double kRestShare = 0.9;
+  std::optional<UnoccludedPart> free;
+  std::uint64_t spent = 0;  // points of an unoccluded part given up
+  if (options.unoccludedApart && degree >= 1 && !candidates.empty() && receiverInFrontOfSource(link)) {
+    free.emplace(link, degree, options.tolerance);
+    const double inf = std::numeric_limits<double>::infinity();
+    // Not converged by the last order (the receiver nearly touching S'): one integral.
+    if (free->refine(0.05 * options.tolerance, inf)) {
+      integrand.shadowsOnly = true;
+    } else {
+      spent = free->points();
+      free.reset();
+    }
+  }
+  const double share = free ? kRestShare : 1.0;
   // Genz-Malik's own estimate (its embedded degree-5 rule) cannot see what no point of a
   // region samples, such as a thin shadow between its points: started from the whole square,
   // a run at the study's 3e-4 stopped early on 1 of 24 of the study's partial links at each
@@ -338,9 +462,10 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   // points as they do at 3e-4 (2,300 and 3,500 a link on average, against 1,800 and 3,400).
   auto genzMalik = [&] {
     GenzMalikOptions genz;
-    genz.tolerance = options.tolerance;
+    genz.tolerance = share * options.tolerance;
     genz.initialGrid = options.initialGrid;
     genz.maxEvaluations = options.maxEvaluations;
+    if (free) genz.baseline = free->value;
     const GenzMalikResult run = genzMalik2d(
         values,
         [&](std::size_t count, const double* points, double* out) {
@@ -351,14 +476,12 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     error = run.error;
   };
   ExactOuterMethod method = options.outer;
-  // The shaft's occluders as one worker culled them (instead of culling once more).
-  const std::vector<std::vector<Eigen::Vector3d>>& candidates =
-      integrand.workers.local().visibility.candidates();
   const std::vector<ReceiverSegment> contact = contactSegments(link.receiver, candidates);
   if (method == ExactOuterMethod::criticalLines) {
     std::vector<ReceiverSegment> segments = criticalSegments(link.receiver, link.source, candidates);
     gold.criticalSegments = segments.size();
     CriticalLineCubature cubature(integrand, std::move(segments), options);
+    if (free) cubature.setBaseline(free->value, share);
     // Many segments make the breakpoints' product costly (floor ~ segments^2): then the
     // bisection of Genz-Malik, linear in the segments' length, is cheaper.
     // Genz-Malik's points grow as tolerance^(-1/2), the floor not at all: the threshold
@@ -387,11 +510,35 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   }
   if (method == ExactOuterMethod::jumpLines) {
     CriticalLineCubature cubature(integrand, contact, options, options.initialGrid);
+    if (free) cubature.setBaseline(free->value, share);
     cubature.run(value, error);
     integrand.points = cubature.points();
   }
   if (method == ExactOuterMethod::genzMalik) genzMalik();
   if (!integrand.finite()) throw ComputationError("exact gold: the inner integral was not finite");
+  if (free) {
+    // K_free's error must fit the tolerance's remaining share of the whole's largest entry;
+    // where the shadows take most of K, it was computed too loosely: higher orders.
+    double whole = 0.0;
+    for (unsigned v = 0; v < values; ++v) whole = std::max(whole, std::abs(free->value[v] + value[v]));
+    const double allowed = (1.0 - share) * options.tolerance * whole;
+    if (largestAbs(free->error) > allowed &&
+        !free->refine(std::numeric_limits<double>::infinity(), 0.5 * allowed)) {
+      // The last order reached first: the whole integral at once instead.
+      ExactGoldOptions together = options;
+      together.unoccludedApart = false;
+      ExactGold gold = exactGold(link, degree, together);
+      gold.receiverPoints += integrand.points + free->points();
+      return gold;
+    }
+    for (unsigned v = 0; v < values; ++v) {
+      value[v] += free->value[v];
+      error[v] += free->error[v];
+    }
+    integrand.points += free->points();
+  }
+  gold.unoccludedApart = free.has_value();
+  integrand.points += spent;
   gold.outer = method;
   const int n = integrand.functions;
   gold.coupling.resize(n, n);

@@ -23,6 +23,11 @@
 //   - Genz-Malik otherwise: the degree-7 rule with its embedded degree-5 rule as the error
 //     estimate (genz_malik.h), from a grid of initialGrid^2 regions, bisecting the regions of
 //     largest error; blind to the segments, it resolves them algebraically.
+// At degree >= 1, when the receiver lies in front of the source's plane (unoccludedApart), K
+// is split as K_free + K_rest: K_free, the inner integrals over S' alone (the same polygon from
+// every receiver point, an analytic integrand), by Gauss-Legendre products of rising order;
+// K_rest, over minus the shadows' union alone, by the method above to 0.9 of the tolerance,
+// K_free's error held to the rest.
 // Both stop when the estimated error of every coefficient is at most `tolerance` times K's
 // largest entry, or when the evaluation budget is spent (then converged = false). No random
 // numbers: the same link gives the same bits, whatever the number of threads (lines, or the
@@ -69,6 +74,11 @@ struct ExactGoldOptions {
   // needs 2 to 4 times more than at degree 0, the critical lines the same.
   std::uint64_t maxFloorPoints = 30000;
   std::uint64_t maxFloorPointsHigherDegrees = 120000;
+  // Degree >= 1, occluders in the shaft, the receiver in front of the source's plane: the
+  // unoccluded part of K (the inner integrals over S' alone, an analytic integrand) by its own
+  // Genz-Malik run, and the outer integration above over minus the shadows' union alone.
+  // Each receiver point then integrates the shadows' edges only, not S''s as well.
+  bool unoccludedApart = true;
   // Called from the calling thread about once a second once the gold has run a second
   // (receiver points so far, seconds); may be empty.
   std::function<void(std::uint64_t points, double seconds)> progress;
@@ -85,6 +95,7 @@ struct ExactGold {
   std::size_t candidateOccluders = 0;  // occluder polygons in the link's shaft
   std::size_t criticalSegments = 0;    // critical lines: segments on the receiver
   ExactOuterMethod outer = ExactOuterMethod::criticalLines;  // the method used
+  bool unoccludedApart = false;  // the unoccluded part was integrated apart (its points counted)
 };
 
 // "critical lines", "jump lines" or "genz-malik".

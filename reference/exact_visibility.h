@@ -55,6 +55,14 @@ class VisibleRings {
     return rings_[count_++];
   }
   void add(const SourceRing& ring, double sign) { add(sign) = ring; }
+  // Drops the first ring (S', the source in front of x: what is left is minus the shadows'
+  // union, ExactVisibility); the rings keep their order and storage.
+  void dropFirst() {
+    if (count_ == 0) return;
+    std::rotate(rings_.begin(), rings_.begin() + 1, rings_.begin() + std::ptrdiff_t(count_));
+    std::rotate(signs_.begin(), signs_.begin() + 1, signs_.begin() + std::ptrdiff_t(count_));
+    --count_;
+  }
   // Drops the rings from `count` on (their storage is kept).
   void truncate(std::size_t count) { count_ = std::min(count, count_); }
 

@@ -116,6 +116,9 @@ GenzMalikResult genzMalik2d(std::size_t values, const BatchIntegrand& evaluate,
     throw InputError("genz-malik: the initial grid must have 1 to 1024 regions per axis");
   }
   if (options.batchRegions < 1) throw InputError("genz-malik: a batch needs a region");
+  if (!options.baseline.empty() && options.baseline.size() != values) {
+    throw InputError("genz-malik: the baseline must have one value per integrand");
+  }
   GenzMalikResult result;
   std::vector<Region> regions;
   std::vector<double> points, out;
@@ -174,7 +177,8 @@ GenzMalikResult genzMalik2d(std::size_t values, const BatchIntegrand& evaluate,
   for (;;) {
     double largest = 0.0, worst = 0.0;
     for (std::size_t v = 0; v < values; ++v) {
-      largest = std::max(largest, std::abs(result.value[v]));
+      const double known = options.baseline.empty() ? 0.0 : options.baseline[v];
+      largest = std::max(largest, std::abs(known + result.value[v]));
       worst = std::max(worst, result.error[v]);
     }
     if (!std::isfinite(largest) || !std::isfinite(worst)) break;

@@ -10,7 +10,8 @@
 //     difference), several at a time: every region whose error the tolerance cannot absorb,
 //     largest first, up to `batchRegions`; their points go to `evaluate` as one batch;
 //   - it stops when every component's summed error is at most `tolerance` times the largest
-//     |summed value|, or when `maxEvaluations` points are spent (converged = false).
+//     |summed value| (plus the baseline's, when one is given), or when `maxEvaluations`
+//     points are spent (converged = false).
 // The regions halved and the order of every sum depend on the values alone, so the result
 // is the same bits whatever `evaluate` does with threads.
 #pragma once
@@ -27,6 +28,10 @@ struct GenzMalikOptions {
   int initialGrid = 1;
   std::uint64_t maxEvaluations = 4000000;
   std::size_t batchRegions = 256;
+  // A part of the whole integral known beforehand (empty: none). The tolerance is then
+  // relative to the largest |baseline + summed value|: the run integrates the rest of an
+  // integral whose size is the whole's. The result holds the run's own values and errors.
+  std::vector<double> baseline;
 };
 
 struct GenzMalikResult {

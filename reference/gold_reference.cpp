@@ -154,6 +154,7 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
     gold.shaftOccluders = exact.candidateOccluders;
     gold.outerMethod = exactOuterMethodName(exact.outer);
     gold.criticalSegments = exact.criticalSegments;
+    gold.unoccludedApart = exact.unoccludedApart;
     return gold;
   }
   if (unoccluded) {

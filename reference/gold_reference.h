@@ -87,6 +87,7 @@ struct GoldReference {
   // exact visibility: "critical lines", "jump lines" or "genz-malik"
   std::string outerMethod;
   std::size_t criticalSegments = 0;     // exact visibility: segments on the receiver
+  bool unoccludedApart = false;         // exact visibility: K_free integrated apart
   std::optional<LambertCheck> lambert;
 };
 

@@ -810,6 +810,64 @@ TEST(ExactGold, TheErrorEstimateBoundsTheTrueError) {
   EXPECT_GE(checked, 10);
 }
 
+// Two integrations of one K, with different integrands on the receiver: S' minus the
+// shadows at every point, or S' apart (Gauss products of rising order) and the shadows
+// alone (the default at degree >= 1). Each must fall within the other's error.
+void expectApartAgreesWithTogether(const Link& link, int degree, double tolerance) {
+  ExactGoldOptions apart, together;
+  apart.tolerance = together.tolerance = tolerance;
+  together.unoccludedApart = false;
+  const ExactGold a = exactGold(link, degree, apart), b = exactGold(link, degree, together);
+  EXPECT_TRUE(a.unoccludedApart);
+  EXPECT_FALSE(b.unoccludedApart);
+  EXPECT_TRUE(a.converged);
+  EXPECT_TRUE(b.converged);
+  const double largest = b.coupling.cwiseAbs().maxCoeff();
+  EXPECT_LE(a.couplingError.maxCoeff(), tolerance * largest * (1 + 1e-9));
+  for (int i = 0; i < a.coupling.rows(); ++i) {
+    for (int j = 0; j < a.coupling.cols(); ++j) {
+      EXPECT_LE(std::fabs(a.coupling(i, j) - b.coupling(i, j)),
+                a.couplingError(i, j) + b.couplingError(i, j))
+          << "degree " << degree << " K[" << i << "][" << j << "]";
+    }
+  }
+}
+
+TEST(ExactGold, TheUnoccludedPartApartAgreesWithTheWholeIntegral) {
+  const Patch receiver = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "receiver");
+  const Patch source = Patch::make({0, 1, 1}, {1, 0, 0}, {0, -1, 0}, "source");
+  {  // two overlapping tilted blockers
+    OccluderScene scene;
+    scene.addParallelogram(Patch::make({0.1, 0.1, 0.4}, {0.5, 0.1, 0.05}, {0.05, 0.5, 0}, "a"));
+    scene.addParallelogram(Patch::make({0.3, 0.2, 0.6}, {0.4, -0.1, 0}, {0.1, 0.6, 0.1}, "b"));
+    scene.commit();
+    for (const int degree : {1, 2}) expectApartAgreesWithTogether({receiver, source, &scene}, degree, 1e-6);
+  }
+  {  // a blocker hiding all but a sliver (x_r + x_s > 1.99): K's largest entry is about 1e-4
+     // of its unoccluded part's, whose error must then be held far below its own tolerance
+     // (higher Gauss orders after the shadows' part)
+    OccluderScene scene;
+    scene.addParallelogram(Patch::make({-0.5, -0.5, 0.5}, {1.499, 0, 0}, {0, 2.0, 0}, "blocker"));
+    scene.commit();
+    const Link link{receiver, source, &scene};
+    expectApartAgreesWithTogether(link, 2, 1e-5);
+    const ExactGold gold = exactGold(link, 0);
+    EXPECT_LT(gold.formFactor, 0.1 * analytic::parallelRectangles(1, 1, 1));
+    EXPECT_FALSE(gold.unoccludedApart);  // degree 0: Lambert's formula costs S' four edges
+  }
+  {  // a receiver crossing the source's plane: S' is not the same from every point
+    OccluderScene scene;
+    scene.addParallelogram(Patch::make({0.2, 0.2, 0.5}, {0.4, 0, 0}, {0, 0.4, 0}, "blocker"));
+    scene.commit();
+    const Patch tilted = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 0.5, 1.5}, "tilted");
+    ExactGoldOptions options;
+    options.tolerance = 1e-5;
+    const ExactGold gold = exactGold({tilted, source, &scene}, 1, options);
+    EXPECT_FALSE(gold.unoccludedApart);
+    EXPECT_TRUE(gold.converged);
+  }
+}
+
 TEST(ExactGold, IsDeterministic) {
   OccluderScene scene;
   scene.addParallelogram(Patch::make({0.1, 0.1, 0.4}, {0.5, 0.1, 0.05}, {0.05, 0.5, 0}, "a"));

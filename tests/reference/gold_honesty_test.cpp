@@ -69,6 +69,9 @@ TEST(GoldHonesty, GenzMalikErrorEstimatesHoldOnTheStudysLinks) {
       tight.tolerance = 1e-7;
       tight.maxFloorPoints = tight.maxFloorPointsHigherDegrees = 1ull << 40;
       tight.maxEvaluations = 600000;
+      // At degree 2 the gold checked integrates the unoccluded part apart (exact_gold.h);
+      // the truths integrate S' minus the shadows at every point, another integrand.
+      tight.unoccludedApart = false;
       truths.push_back(exactGold(drawn.link(), degree, tight));
       // A truth may stop at its budget: its own estimate still counts, and it must be a
       // hundred times below the tolerance checked.
@@ -94,9 +97,11 @@ TEST(GoldHonesty, GenzMalikErrorEstimatesHoldOnTheStudysLinks) {
                 degree, chosen.failures, links.size(), chosen.worstRatio);
     EXPECT_EQ(chosen.failures, 0);
     // The check has teeth: started from the whole square, a run misses a shadow on at least
-    // one of these links and reports an error below the one it makes.
+    // one of these links and reports an error below the one it makes (integrating S' minus
+    // the shadows at every point; with the unoccluded part apart, no link failed at degree 2).
     ExactGoldOptions lone = study;
     lone.initialGrid = 1;
+    lone.unoccludedApart = false;
     const Tally blind = tally(views, truths, degree, lone);
     std::printf("degree %d, initial grid 1: %d of %zu links failed; worst actual error %.3g of "
                 "the estimate\n",
@@ -121,6 +126,7 @@ TEST(GoldHonesty, WhereAnOccluderStandsOnTheReceiverTheJumpLinesKeepTheirEstimat
     ExactGoldOptions tight;
     tight.tolerance = 1e-6;
     tight.maxFloorPoints = tight.maxFloorPointsHigherDegrees = 1ull << 40;
+    tight.unoccludedApart = false;  // another integrand than the default's at degree 2
     const ExactGold truth = exactGold(link, degree, tight);
     ASSERT_EQ(truth.outer, ExactOuterMethod::criticalLines);
     ASSERT_TRUE(truth.converged);
