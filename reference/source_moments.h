@@ -19,11 +19,14 @@
 // the edge on pieces no longer than the distance to the integrand's nearest complex singularity
 // (at sqrt(d^2 + H^2) from the edge's closest point to p0, d the distance of the edge's line):
 // a geometric refinement towards p0 that keeps the rule's error near rounding (about 1e-14
-// relative) however close x is to the source. A looser `accuracy` (1e-6 or more) takes 8 edge
-// points instead, with an error of at most 2e-7 relative, and at degrees 1-3 takes the
-// radial recurrences from R / H = 0.15 (an 8-point rule below), which lose at most 1.3e-10
-// relative there (1.2e-8 at degree 3). The exact gold asks for a
-// hundredth of its tolerance.
+// relative) however close x is to the source. A looser `accuracy` (1e-6 or more) at degrees
+// 1 and 2 takes 8 edge points instead, with an error of at most 2e-7 relative where x's foot
+// lies over the source, and the radial recurrences from R / H = 0.15 (an 8-point rule
+// below), which lose at most 1.3e-10 relative there. Beside the source and near its plane
+// (grazing angles, small moments whose edge terms cancel) the 8 points' error relative to
+// x's own moments grows, up to 1.1e-4 at degree 2 (source_moments.cpp), small in absolute
+// terms; degree 3, where it reached 2.2e-3 and a grazing link's gold missed its estimate,
+// keeps the tight rules. The exact gold asks for a hundredth of its tolerance.
 #pragma once
 
 #include <Eigen/Core>
@@ -37,8 +40,9 @@ namespace radquad {
 
 class SourceMoments {
  public:
-  // accuracy: the relative error allowed in the degree >= 1 (polar) integrals; below 1e-6,
-  // about 1e-14, otherwise at most 2e-7. Lambert's formula (degree 0) is exact either way.
+  // accuracy: the relative error allowed in the degree >= 1 (polar) integrals; below 1e-6 or
+  // at degree 3 and above, about 1e-14, otherwise at most 2e-7 (where x's foot lies over the
+  // source; see above). Lambert's formula (degree 0) is exact either way.
   SourceMoments(const Patch& source, int degree, double accuracy = 1e-14);
 
   int functions() const { return functions_; }

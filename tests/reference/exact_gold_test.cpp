@@ -189,8 +189,9 @@ TEST(RadialMoments, LooseLanesStayWithinTheirBoundWhateverTheirNeighbours) {
 
 TEST(SourceMoments, LooseAccuracyStaysWithinItsBoundOfTheAccurateIntegrals) {
   // The 8-point edge rule (accuracy 1e-6: error at most 2e-7 of the largest moment) against
-  // the 12-point one (about 1e-14), at degrees 1 to 3, from points near (a twentieth of the
+  // the 12-point one (about 1e-14), at degrees 1 and 2, from points near (a twentieth of the
   // source's size) and far, above the interior and beyond the edges, on rings with a hole.
+  // Degree 3 keeps the 12 points at any accuracy: the same values.
   const Patch source = Patch::make({0, 1, 1}, {1, 0, 0.2}, {0.1, -1, 0}, "source");
   VisibleRings rings;
   rings.add({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 1.0);
@@ -200,6 +201,7 @@ TEST(SourceMoments, LooseAccuracyStaysWithinItsBoundOfTheAccurateIntegrals) {
   const Eigen::Vector3d normal = Eigen::Vector3d(0.1, -0.2, 1).normalized();
   for (const int degree : {1, 2, 3}) {
     const SourceMoments accurate(source, degree, 1e-14), loose(source, degree, 1e-6);
+    const bool same = degree == 3;
     const int n = accurate.functions();
     std::vector<double> a(static_cast<std::size_t>(n)), b(static_cast<std::size_t>(n));
     int compared = 0;
@@ -217,11 +219,13 @@ TEST(SourceMoments, LooseAccuracyStaysWithinItsBoundOfTheAccurateIntegrals) {
         largest = std::max(largest, std::fabs(a[std::size_t(j)]));
         difference = std::max(difference, std::fabs(a[std::size_t(j)] - b[std::size_t(j)]));
       }
-      EXPECT_LE(difference, 2e-7 * largest) << "degree " << degree << " point " << k;
+      EXPECT_LE(difference, same ? 0.0 : 2e-7 * largest) << "degree " << degree << " point " << k;
       // The looser rules differ: the test compares two computations, not one twice.
       if (difference > 0.0) ++compared;
     }
-    EXPECT_GT(compared, 0) << "degree " << degree;
+    if (!same) {
+      EXPECT_GT(compared, 0) << "degree " << degree;
+    }
   }
 }
 
@@ -865,6 +869,41 @@ TEST(ExactGold, TheUnoccludedPartApartAgreesWithTheWholeIntegral) {
     const ExactGold gold = exactGold({tilted, source, &scene}, 1, options);
     EXPECT_FALSE(gold.unoccludedApart);
     EXPECT_TRUE(gold.converged);
+  }
+}
+
+TEST(ExactGold, AGrazingLinkKeepsItsErrorEstimate) {
+  // A receiver beside the source and a twentieth of its size above its plane sees it at
+  // grazing angles: its points' inner integrals are small sums of large terms that cancel.
+  // At the study's tolerance the gold, with its unoccluded part apart or not, must stay within
+  // its estimate of a run at 1e-8 (tight inner rules, the whole integral at once). With the
+  // loose inner rules in the unoccluded part its actual error reached 6, 100 and 174 times
+  // its estimate (degrees 1-3), and 3 times at degree 3 with the loose rules everywhere.
+  const Patch source = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "source");
+  const Patch receiver = Patch::make({1.3, 1, 0.05}, {0, -1, 0}, {1, 0, 0.05}, "receiver");
+  OccluderScene scene;
+  scene.addParallelogram(Patch::make({1.1, 0.2, 0.0005}, {0, 0.3, 0}, {0, 0, 0.01}, "blocker"));
+  scene.commit();
+  const Link link{receiver, source, &scene};
+  for (const int degree : {1, 2, 3}) {
+    ExactGoldOptions tight;
+    tight.tolerance = 1e-8;
+    tight.unoccludedApart = false;
+    const ExactGold truth = exactGold(link, degree, tight);
+    ASSERT_TRUE(truth.converged);
+    for (const bool apart : {true, false}) {
+      ExactGoldOptions study;
+      study.tolerance = 3e-4;
+      study.unoccludedApart = apart;
+      const ExactGold gold = exactGold(link, degree, study);
+      EXPECT_EQ(gold.unoccludedApart, apart);
+      EXPECT_TRUE(gold.converged);
+      for (Eigen::Index k = 0; k < gold.coupling.size(); ++k) {
+        EXPECT_LE(std::fabs(gold.coupling.data()[k] - truth.coupling.data()[k]),
+                  gold.couplingError.data()[k] + truth.couplingError.data()[k])
+            << "degree " << degree << " apart " << apart << " entry " << k;
+      }
+    }
   }
 }
 
