@@ -11,7 +11,9 @@
 // only); the time per link is the iteration time / the links. Counters: receiver_points (exact), max_relative_error (the largest
 // reported error over the largest |K| entry; for dense stratified its standard error),
 // by_critical_lines and by_jump_lines (the shares of links whose outer integral took the
-// critical lines or the jump lines; the rest took Genz-Malik, exact_gold.h). The `_genz_malik` variants force
+// critical lines or the jump lines; the rest took Genz-Malik, exact_gold.h), unoccluded_apart
+// (the share of links whose unoccluded part was integrated apart: degree >= 1 with the
+// receiver in front of the source's plane, exact_gold.h). The `_genz_malik` variants force
 // Genz-Malik on every link, for comparison.
 // The soup's exact gold is capped at 20,000 receiver points (it does not converge there).
 // unionClipper / unionBoostGeometry: the shadows' union by Clipper (the one used) and by
@@ -59,17 +61,19 @@ void exactPerLink(benchmark::State& state, OccluderKind kind, int degree, double
   options.tolerance = tolerance;
   options.outer = outer;
   if (kind == OccluderKind::soup) options.maxEvaluations = 20000;
-  double points = 0.0, worst = 0.0, lines = 0.0, jumps = 0.0;
+  double points = 0.0, worst = 0.0, lines = 0.0, jumps = 0.0, apart = 0.0;
   for (auto _ : state) {
     points = 0.0;
     worst = 0.0;
     lines = 0.0;
     jumps = 0.0;
+    apart = 0.0;
     for (const Link& link : links.links) {
       const ExactGold gold = exactGold(link, degree, options);
       points += double(gold.receiverPoints);
       lines += gold.outer == ExactOuterMethod::criticalLines ? 1.0 : 0.0;
       jumps += gold.outer == ExactOuterMethod::jumpLines ? 1.0 : 0.0;
+      apart += gold.unoccludedApart ? 1.0 : 0.0;
       worst = std::max(worst, gold.couplingError.maxCoeff() / gold.coupling.cwiseAbs().maxCoeff());
       benchmark::DoNotOptimize(gold.coupling.data());
     }
@@ -77,6 +81,7 @@ void exactPerLink(benchmark::State& state, OccluderKind kind, int degree, double
   state.counters["receiver_points"] = points / double(links.links.size());
   state.counters["by_critical_lines"] = lines / double(links.links.size());
   state.counters["by_jump_lines"] = jumps / double(links.links.size());
+  state.counters["unoccluded_apart"] = apart / double(links.links.size());
   state.counters["max_relative_error"] = worst;
   state.counters["links"] = double(links.links.size());
 }
