@@ -160,6 +160,31 @@ TEST(GenzMalik, AFeatureBetweenTheFirstRegionsPointsNeedsTheGrid) {
   EXPECT_LE(std::abs(grid.value[0] - exact), grid.error[0]);
 }
 
+TEST(GenzMalik, ABaselineSetsTheSizeTheToleranceIsRelativeTo) {
+  // The rest of an integral whose known part is 1: the run stops when its error is 1e-6 of
+  // |1 + its value|, far sooner than at 1e-6 of its own small value, and is still within
+  // its estimate of the closed form; without the baseline it meets the tighter target.
+  const Scalar small = [](double s, double t) { return 1e-3 * std::exp(3.0 * (s + t)); };
+  const double exact = 1e-3 * std::pow((std::exp(3.0) - 1.0) / 3.0, 2);
+  GenzMalikOptions alone;
+  alone.tolerance = 1e-6;
+  GenzMalikOptions rest = alone;
+  rest.baseline = {1.0};
+  const GenzMalikResult own = genzMalik2d(1, batchOf(small), alone);
+  const GenzMalikResult part = genzMalik2d(1, batchOf(small), rest);
+  ASSERT_TRUE(own.converged);
+  ASSERT_TRUE(part.converged);
+  EXPECT_LE(own.error[0], 1e-6 * own.value[0]);
+  EXPECT_LE(part.error[0], 1e-6 * (1.0 + part.value[0]));
+  EXPECT_GT(part.error[0], 1e-6 * part.value[0]);  // the run took the looser target
+  EXPECT_LT(part.points, own.points);
+  for (const GenzMalikResult* run : {&own, &part}) {
+    EXPECT_LE(std::abs(run->value[0] - exact), run->error[0]);
+  }
+  rest.baseline = {1.0, 2.0};  // one value per integrand
+  EXPECT_THROW(genzMalik2d(1, batchOf(small), rest), InputError);
+}
+
 TEST(GenzMalik, StopsUnconvergedAtItsBudgetAndRejectsBadOptions) {
   const Scalar singular = [](double s, double t) { return 1.0 / std::sqrt(s * s + t * t + 1e-300); };
   GenzMalikOptions options;
