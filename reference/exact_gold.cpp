@@ -115,6 +115,43 @@ void evaluateBatch(OuterIntegrand& integrand, std::size_t count, const double* p
   integrand.report(integrand.points);
 }
 
+// The n x n Gauss-Legendre product over the receiver's square of the integrand's values,
+// summed in a fixed order (the points spread over threads by evaluateBatch).
+std::vector<double> gaussProduct(OuterIntegrand& integrand, int n) {
+  const GaussLegendreRule& rule = gaussLegendreUnit(n);
+  const std::size_t values = std::size_t(integrand.functions * integrand.functions);
+  const std::size_t count = std::size_t(n) * std::size_t(n);
+  std::vector<double> points(2 * count);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      points[2 * std::size_t(i * n + j)] = rule.nodes[std::size_t(i)];
+      points[2 * std::size_t(i * n + j) + 1] = rule.nodes[std::size_t(j)];
+    }
+  }
+  std::vector<double> out(count * values);
+  evaluateBatch(integrand, count, points.data(), out.data());
+  std::vector<double> sum(values, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double w = rule.weights[std::size_t(i)] * rule.weights[std::size_t(j)];
+      const double* f = out.data() + std::size_t(i * n + j) * values;
+      for (std::size_t v = 0; v < values; ++v) sum[v] += w * f[v];
+    }
+  }
+  return sum;
+}
+
+// max_v |known[v] + value[v]| (known empty: max |value|): the size of a whole integral whose
+// part `known` was integrated apart.
+double largestOfSum(const std::vector<double>& known, const std::vector<double>& value) {
+  if (known.empty()) return largestAbs(value);
+  double largest = 0.0;
+  for (std::size_t v = 0; v < value.size(); ++v) {
+    largest = std::max(largest, std::abs(known[v] + value[v]));
+  }
+  return largest;
+}
+
 // The outer integral as iterated adaptive Gauss-Kronrod (gauss_kronrod.h) with the critical segments
 // (critical_segments.h) as breakpoints: g(s) = int_0^1 f(s, t) dt along each line s = const,
 // the breakpoints where the line crosses a segment; the outer integral of g over s, the
@@ -172,7 +209,7 @@ class CriticalLineCubature {
     evaluateOuter(pieces, all, options_.innerShare * share_ * options_.tolerance * scale);
     for (;;) {
       sumPieces(pieces, values_, value, error);
-      scale = largestWithBaseline(value);
+      scale = largestOfSum(baseline_, value);
       const double target = share_ * options_.tolerance * scale;
       if (largestAbs(error) <= target) return true;
       if (points_ >= options_.maxEvaluations) return false;
@@ -208,36 +245,10 @@ class CriticalLineCubature {
     return breaks;
   }
 
-  // max |baseline + value|.
-  double largestWithBaseline(const std::vector<double>& value) const {
-    if (baseline_.empty()) return largestAbs(value);
-    double largest = 0.0;
-    for (std::size_t v = 0; v < value.size(); ++v) {
-      largest = std::max(largest, std::abs(baseline_[v] + value[v]));
-    }
-    return largest;
-  }
-
+  // K's size, for the lines' first tolerance: a 16 x 16 Gauss product over the receiver.
   double estimateScale() {
-    const GaussLegendreRule& rule = gaussLegendreUnit(16);
-    const std::size_t n = rule.nodes.size();
-    std::vector<std::vector<double>> rows(n, std::vector<double>(values_, 0.0));
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-      Worker& worker = integrand_.workers.local();
-      std::vector<double> sample(values_);
-      for (std::size_t j = 0; j < n; ++j) {
-        integrand_.evaluate(worker, rule.nodes[i], rule.nodes[j], sample.data());
-        for (std::size_t v = 0; v < values_; ++v) {
-          rows[i][v] += rule.weights[i] * rule.weights[j] * sample[v];
-        }
-      }
-    });
-    points_ += n * n;
-    std::vector<double> total(values_, 0.0);
-    for (const auto& row : rows) {
-      for (std::size_t v = 0; v < values_; ++v) total[v] += row[v];
-    }
-    return largestWithBaseline(total);
+    points_ += 16 * 16;
+    return largestOfSum(baseline_, gaussProduct(integrand_, 16));
   }
 
   // The lines of every piece listed in `fresh` (one per point of the pair), computed in
@@ -370,7 +381,8 @@ class UnoccludedPart {
       }
       if (next_ == std::size(kOrders)) return false;
       std::vector<double> coarser = std::move(value);
-      value = product(kOrders[next_++]);
+      value = gaussProduct(integrand_, kOrders[next_++]);
+      if (!integrand_.finite()) throw ComputationError("exact gold: the inner integral was not finite");
       if (coarser.empty()) {
         error.assign(values_, std::numeric_limits<double>::infinity());
       } else {
@@ -386,29 +398,6 @@ class UnoccludedPart {
   static constexpr int kOrders[] = {4, 6, 8, 12, 16, 24, 32};
   // OuterIntegrand takes its inner integrals to a hundredth of this: 1e-14.
   static constexpr double kTightInnerTolerance = 1e-12;
-
-  std::vector<double> product(int n) {
-    const GaussLegendreRule& rule = gaussLegendreUnit(n);
-    std::vector<double> points(2 * std::size_t(n) * std::size_t(n));
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        points[2 * std::size_t(i * n + j)] = rule.nodes[std::size_t(i)];
-        points[2 * std::size_t(i * n + j) + 1] = rule.nodes[std::size_t(j)];
-      }
-    }
-    std::vector<double> out(std::size_t(n) * std::size_t(n) * values_);
-    evaluateBatch(integrand_, std::size_t(n) * std::size_t(n), points.data(), out.data());
-    if (!integrand_.finite()) throw ComputationError("exact gold: the inner integral was not finite");
-    std::vector<double> sum(values_, 0.0);
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        const double w = rule.weights[std::size_t(i)] * rule.weights[std::size_t(j)];
-        const double* f = out.data() + std::size_t(i * n + j) * values_;
-        for (std::size_t v = 0; v < values_; ++v) sum[v] += w * f[v];
-      }
-    }
-    return sum;
-  }
 
   Link bare_;
   OuterIntegrand integrand_;
@@ -524,9 +513,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   if (free) {
     // K_free's error must fit the tolerance's remaining share of the whole's largest entry;
     // where the shadows take most of K, it was computed too loosely: higher orders.
-    double whole = 0.0;
-    for (unsigned v = 0; v < values; ++v) whole = std::max(whole, std::abs(free->value[v] + value[v]));
-    const double allowed = (1.0 - share) * options.tolerance * whole;
+    const double allowed = (1.0 - share) * options.tolerance * largestOfSum(free->value, value);
     if (largestAbs(free->error) > allowed &&
         !free->refine(std::numeric_limits<double>::infinity(), 0.5 * allowed)) {
       // The last order reached first: the whole integral at once instead.
