@@ -38,7 +38,7 @@ struct Worker {
   bool finite = true;
 
   Worker(const Link& link, int degree, double innerAccuracy)
-      : visibility(link, degree == 0),
+      : visibility(link),
         moments(link.source, degree, innerAccuracy),
         inner(std::size_t(basisFunctionCount(degree))),
         receiverValues(std::size_t(basisFunctionCount(degree))) {}

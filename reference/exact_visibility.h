@@ -9,9 +9,13 @@
 // shadow is the central projection from x onto the source's plane of the part of an occluder
 // polygon inside the pyramid with apex x over S' (clipped in 3D, so every shadow lies inside
 // S' and is convex). Integrals over V are then taken as the integral over S' minus the
-// integral over the union of the shadows; the union is formed only when two shadows overlap
-// (separating-axis test), with the Vatti clipper of Clipper (libpolyclipping, exact integer
-// arithmetic on coordinates scaled by 2^44 in the source's unit square).
+// integral over the union of the shadows. A shadow that overlaps no other (separating-axis
+// test) counts as it is. Overlapping ones count by the outline of their union (ShadowUnion):
+// the pieces of their edges that no other shadow covers, found by clipping each edge to each
+// convex shadow; both inner integrals are sums of one term per edge, so the pieces need not
+// be joined into polygons. Where the pieces do not close up, the union is formed by the Vatti
+// clipper of Clipper (libpolyclipping, exact integer arithmetic on coordinates scaled by 2^44
+// in the source's unit square), which also serves as the check of the outline in the tests.
 //
 // Occluders are culled once per link against the shaft, the convex hull of the receiver's and
 // the source's corners: a polygon entirely outside one face plane of the hull blocks no
@@ -23,6 +27,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -35,15 +40,23 @@ namespace radquad {
 using SourceRing = std::vector<Eigen::Vector2d>;
 
 // What x sees: integrate f over V as sum_r sign(r) * (signed integral of f over ring(r)),
-// r < count(). The rings' storage is kept across clear() so that a thread reuses it.
+// r < count(), plus the pieces of an outline: sum_s segmentSign(s) * (the contour term of
+// the edge segmentStart(s) -> segmentEnd(s)), s < segmentCount(). Both integrals the gold
+// takes (Lambert's formula and the polar one) are sums of one term per edge, so a region
+// bounded by pieces that close up only together (the outline of the shadows' union, cut at
+// the points where the shadows cross) needs no rings. The storage is kept across clear()
+// so that a thread reuses it.
 class VisibleRings {
  public:
   std::size_t count() const { return count_; }
-  bool empty() const { return count_ == 0; }
+  bool empty() const { return count_ == 0 && segmentCount_ == 0; }
   const SourceRing& ring(std::size_t r) const { return rings_[r]; }
   double sign(std::size_t r) const { return signs_[r]; }
   void setSign(std::size_t r, double sign) { signs_[r] = sign; }
-  void clear() { count_ = 0; }
+  void clear() {
+    count_ = 0;
+    segmentCount_ = 0;
+  }
   // A new empty ring of the given sign (+1 for S', -1 for the rings of the shadows' union).
   SourceRing& add(double sign) {
     if (count_ == rings_.size()) {
@@ -66,25 +79,53 @@ class VisibleRings {
   // Drops the rings from `count` on (their storage is kept).
   void truncate(std::size_t count) { count_ = std::min(count, count_); }
 
+  std::size_t segmentCount() const { return segmentCount_; }
+  // Drops the segments from `count` on.
+  void truncateSegments(std::size_t count) { segmentCount_ = std::min(count, segmentCount_); }
+  const Eigen::Vector2d& segmentStart(std::size_t s) const { return segmentEnds_[2 * s]; }
+  const Eigen::Vector2d& segmentEnd(std::size_t s) const { return segmentEnds_[2 * s + 1]; }
+  double segmentSign(std::size_t s) const { return segmentSigns_[s]; }
+  void addSegment(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double sign) {
+    if (segmentCount_ == segmentSigns_.size()) {
+      segmentEnds_.resize(2 * segmentCount_ + 2);
+      segmentSigns_.push_back(0.0);
+    }
+    segmentEnds_[2 * segmentCount_] = start;
+    segmentEnds_[2 * segmentCount_ + 1] = end;
+    segmentSigns_[segmentCount_++] = sign;
+  }
+
  private:
   std::vector<SourceRing> rings_;
   std::vector<double> signs_;
   std::size_t count_ = 0;
+  std::vector<Eigen::Vector2d> segmentEnds_;  // start, end of each segment
+  std::vector<double> segmentSigns_;
+  std::size_t segmentCount_ = 0;
 };
 
 struct ExactVisibilityStatistics {
   std::size_t candidateOccluders = 0;  // after the shaft cull
   std::size_t unions = 0;              // points whose shadows needed a polygon union
+  std::size_t unionsByClipper = 0;     // of those, the ones Clipper formed
+};
+
+// How the union of overlapping shadows is subtracted (ExactVisibility).
+enum class ShadowUnion {
+  // Its outline, as the pieces of the shadows' edges that no other shadow covers (segments;
+  // the default: the fewest edges, and no polygon formed).
+  outline,
+  // Inclusion-exclusion over the shadows' intersections (convex rings, more edges than the
+  // outline), Clipper beyond 64 of them or where a ring has an edge too short to cut by.
+  inclusionExclusion,
+  // Clipper's union, as rings (exact integer arithmetic on a grid of 2^-44).
+  clipper,
 };
 
 class ExactVisibility {
  public:
   // Keeps references to the link's patches and occluder scene; culls the occluders.
-  // Overlapping shadows: their union by inclusion-exclusion over their intersections (convex
-  // rings, more edges than the union's outline: cheaper where each edge costs little, as in
-  // Lambert's formula), or by Clipper alone (`inclusionExclusion` false: fewer edges, for
-  // the polar inner integral, whose edges cost more).
-  explicit ExactVisibility(const Link& link, bool inclusionExclusion = true);
+  explicit ExactVisibility(const Link& link, ShadowUnion method = ShadowUnion::outline);
 
   // The visible part of the source from x (on the receiver, normal link.receiver.normal).
   // Thread-compatible: one object per thread, or calls from one thread at a time.
@@ -99,9 +140,17 @@ class ExactVisibility {
   // Subtracts the union of the shadows that overlap another (overlaps_) by inclusion-exclusion
   // over their intersections; false (and `out` as it was) when Clipper must form it.
   bool subtractOverlapping(std::size_t shadowCount, VisibleRings& out);
+  // Subtracts the union of the shadows that overlap another by its outline's pieces (out's
+  // first ring is S'); false (and `out` as it was) where the pieces do not close up (then
+  // Clipper forms the union).
+  bool subtractOutline(std::size_t shadowCount, VisibleRings& out);
+  // Closes the outline's pieces from segment `first` on: every end meets a start.
+  bool closeOutline(std::size_t first, double tolerance, VisibleRings& out);
+  // Subtracts it by Clipper's union.
+  void subtractClipperUnion(std::size_t shadowCount, VisibleRings& out);
 
   const Link& link_;
-  bool inclusionExclusion_;
+  ShadowUnion method_;
   Eigen::Vector3d dualU_, dualV_;  // (y - origin) . dualU = u for y in the source's plane
   std::vector<std::vector<Eigen::Vector3d>> candidates_;
   std::vector<double> candidateReach_;  // polygonReach of each candidate
@@ -113,6 +162,9 @@ class ExactVisibility {
   std::vector<std::pair<double, double>> planeNorms_;  // per plane: |normal|_1, |offset|
   std::vector<std::size_t> cutting_;  // the planes that cut one candidate
   std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
+  // Per shadow vertex, the planes through x and S''s edges it lies on: bit s for edge s.
+  std::vector<std::vector<std::uint32_t>> shadowSides_;
+  std::vector<int> pyramidSide_;  // per pyramid plane, the edge of S' it stands on, or -1
   std::vector<Eigen::Vector4d> shadowBounds_;
   std::vector<char> overlaps_;  // per shadow: whether it overlaps another
   // Inclusion-exclusion over the overlapping shadows: their indices, and per depth the
@@ -121,6 +173,27 @@ class ExactVisibility {
   std::vector<SourceRing> intersections_;
   std::vector<Eigen::Vector4d> intersectionBounds_;  // their boxes, as shadowBounds_
   SourceRing scratchRing_;
+  // The outline: the parts [from, to] of one shadow edge that shadow `cover` covers, and the
+  // edges of `cover` they begin and end on (kNoEdge: the covered edge's own end).
+  static constexpr std::size_t kNoEdge = std::size_t(-1);
+  struct CoveredPart {
+    double from, to;
+    std::size_t fromEdge, toEdge;
+    std::size_t cover = 0;
+  };
+  std::vector<CoveredPart> covered_;
+  // Per shadow: (edge vector, squared length, the edge of S' it runs along or -1).
+  std::vector<std::vector<Eigen::Vector4d>> edgeLines_;
+  // A shadow edge along edge `side` of S', from parameter `from` to `to` along it; the planes
+  // of S''s edges its start and end lie on (bits, as in shadowSides_).
+  struct BorderPart {
+    std::size_t side;
+    double from, to;
+    Eigen::Vector2d start, end;
+    std::uint32_t startOn, endOn;
+  };
+  std::vector<BorderPart> borderParts_, mergedBorder_;
+  std::vector<std::pair<Eigen::Vector2d, std::size_t>> starts_, ends_;  // closeOutline's
   std::vector<std::pair<std::size_t, std::size_t>> setStack_;
   ClipperLib::Paths clipperPaths_, clipperUnion_;
 };

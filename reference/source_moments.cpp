@@ -368,29 +368,23 @@ double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d
   const Eigen::Vector3d& eu = source_.edgeU;
   const Eigen::Vector3d& ev = source_.edgeV;
   double lanes[kLanes] = {};
-  for (std::size_t r = 0; r < visible.count(); ++r) {
-    const SourceRing& ring = visible.ring(r);
-    const std::size_t count = ring.size();
-    // A ring counter-clockwise about the source's normal, seen from x in front of the source,
-    // gives a negative sum.
-    const double sign = -visible.sign(r);
+  // count edges: the ends of edge i by ends(i), its weight by weightOf(i).
+  const auto addEdges = [&](std::size_t count, const auto& ends, const auto& weightOf) {
     for (std::size_t first = 0; first < count; first += kLanes) {
       double ax[kLanes], ay[kLanes], az[kLanes], bx[kLanes], by[kLanes], bz[kLanes];
       double weight[kLanes];
       for (int k = 0; k < kLanes; ++k) {
-        // Lanes past the ring's end repeat its first edge with no weight.
+        // Lanes past the last edge repeat the first with no weight.
         const bool used = first + std::size_t(k) < count;
         const std::size_t i = used ? first + std::size_t(k) : 0;
-        const std::size_t j = i + 1 < count ? i + 1 : 0;
-        const Eigen::Vector2d& a = ring[i];
-        const Eigen::Vector2d& b = ring[j];
+        const auto [a, b] = ends(i);
         ax[k] = o.x() + a.x() * eu.x() + a.y() * ev.x();
         ay[k] = o.y() + a.x() * eu.y() + a.y() * ev.y();
         az[k] = o.z() + a.x() * eu.z() + a.y() * ev.z();
         bx[k] = o.x() + b.x() * eu.x() + b.y() * ev.x();
         by[k] = o.y() + b.x() * eu.y() + b.y() * ev.y();
         bz[k] = o.z() + b.x() * eu.z() + b.y() * ev.z();
-        weight[k] = used ? sign : 0.0;
+        weight[k] = used ? weightOf(i) : 0.0;
       }
       double crossNorm[kLanes], cosine[kLanes], normal[kLanes];
       for (int k = 0; k < kLanes; ++k) {
@@ -413,7 +407,22 @@ double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d
         lanes[k] += some ? weight[k] * normal[k] * inverse * angle[k] : 0.0;
       }
     }
+  };
+  using Ends = std::pair<const Eigen::Vector2d&, const Eigen::Vector2d&>;
+  // An edge counter-clockwise about the source's normal, seen from x in front of the source,
+  // gives a negative term.
+  for (std::size_t r = 0; r < visible.count(); ++r) {
+    const SourceRing& ring = visible.ring(r);
+    const std::size_t count = ring.size();
+    const double sign = -visible.sign(r);
+    addEdges(
+        count, [&](std::size_t i) { return Ends(ring[i], ring[i + 1 < count ? i + 1 : 0]); },
+        [&](std::size_t) { return sign; });
   }
+  addEdges(
+      visible.segmentCount(),
+      [&](std::size_t i) { return Ends(visible.segmentStart(i), visible.segmentEnd(i)); },
+      [&](std::size_t i) { return -visible.segmentSign(i); });
   double total = 0.0;
   sumLanes(lanes, 1, &total);
   return total / (2.0 * std::numbers::pi);
@@ -500,66 +509,71 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
   NodeBatch batch;
   constexpr int kLaneEntries = kBatched ? (D + 1) * (D + 1) * kLanes : 1;
   double laneT[kLaneEntries] = {};
-  for (std::size_t r = 0; r < visible.count(); ++r) {
-    const SourceRing& ring = visible.ring(r);
-    const std::size_t count = ring.size();
-    for (std::size_t e = 0; e < count; ++e) {
-      const Eigen::Vector2d a = toPlane_ * ring[e] - foot;
-      const Eigen::Vector2d b = toPlane_ * ring[(e + 1) % count] - foot;
-      const double length = (b - a).norm();
-      if (length == 0.0) continue;
-      const Eigen::Vector2d direction = (b - a) / length;
-      const double distance = a.x() * direction.y() - a.y() * direction.x();  // signed
-      // The triangle has no area: |distance| <= 1e-15 max(|a|, |b|, H), in squares.
-      if (distance * distance <= 1e-30 * std::max({a.squaredNorm(), b.squaredNorm(), H * H})) {
+  // One edge (uvA, uvB) of a ring or of the outline, in (u, v), and the sign it counts with.
+  const auto edge = [&](const Eigen::Vector2d& uvA, const Eigen::Vector2d& uvB, double edgeSign) {
+    const Eigen::Vector2d a = toPlane_ * uvA - foot;
+    const Eigen::Vector2d b = toPlane_ * uvB - foot;
+    const double length = (b - a).norm();
+    if (length == 0.0) return;
+    const Eigen::Vector2d direction = (b - a) / length;
+    const double distance = a.x() * direction.y() - a.y() * direction.x();  // signed
+    // The triangle has no area: |distance| <= 1e-15 max(|a|, |b|, H), in squares.
+    if (distance * distance <= 1e-30 * std::max({a.squaredNorm(), b.squaredNorm(), H * H})) {
+      return;
+    }
+    const Eigen::Vector2d closest = a - a.dot(direction) * direction;
+    const double sa = a.dot(direction), sb = sa + length;
+    // Signed triangle (p0, a, b): integrand along the edge |d| / R^2 Phi(R), sign of d.
+    const double sign = distance > 0.0 ? 1.0 : -1.0;
+    const double reach2 = distance * distance + H * H;
+    // Pieces [s0, s1] of the edge, bisected until no longer than the distance from their
+    // centre to the nearest singularity, at +-i sqrt(d^2 + H^2) from the closest point.
+    double stack[2 * 64];
+    int top = 0;
+    stack[top++] = sa;
+    stack[top++] = sb;
+    while (top > 0) {
+      const double s1 = stack[--top];
+      const double s0 = stack[--top];
+      const double centre = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
+      if (half * half > 0.25 * (centre * centre + reach2) && top + 4 <= 2 * 64) {
+        stack[top++] = s0;
+        stack[top++] = centre;
+        stack[top++] = centre;
+        stack[top++] = s1;
         continue;
       }
-      const Eigen::Vector2d closest = a - a.dot(direction) * direction;
-      const double sa = a.dot(direction), sb = sa + length;
-      // Signed triangle (p0, a, b): integrand along the edge |d| / R^2 Phi(R), sign of d.
-      const double sign = distance > 0.0 ? 1.0 : -1.0;
-      const double reach2 = distance * distance + H * H;
-      // Pieces [s0, s1] of the edge, bisected until no longer than the distance from their
-      // centre to the nearest singularity, at +-i sqrt(d^2 + H^2) from the closest point.
-      double stack[2 * 64];
-      int top = 0;
-      stack[top++] = sa;
-      stack[top++] = sb;
-      while (top > 0) {
-        const double s1 = stack[--top];
-        const double s0 = stack[--top];
-        const double centre = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
-        if (half * half > 0.25 * (centre * centre + reach2) && top + 4 <= 2 * 64) {
-          stack[top++] = s0;
-          stack[top++] = centre;
-          stack[top++] = centre;
-          stack[top++] = s1;
-          continue;
-        }
-        // The piece's nodes in one loop over them (vector instructions), then to the batch.
-        const double factor = visible.sign(r) * sign * std::fabs(distance) * (s1 - s0);
-        double wx[kMaxEdgePoints], wy[kMaxEdgePoints], weight[kMaxEdgePoints];
-        for (int k = 0; k < edgePoints; ++k) {
-          const double s = s0 + (s1 - s0) * nodes[k];
-          wx[k] = closest.x() + s * direction.x();
-          wy[k] = closest.y() + s * direction.y();
-          weight[k] = factor * weights[k] / (wx[k] * wx[k] + wy[k] * wy[k]);
-        }
-        for (int k = 0; k < edgePoints; ++k) {
-          if constexpr (kBatched) {
-            batch.wx[batch.count] = wx[k];
-            batch.wy[batch.count] = wy[k];
-            batch.weight[batch.count] = weight[k];
-            if (++batch.count == kLanes) {
-              accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, loose_, laneT);
-              batch.count = 0;
-            }
-          } else {
-            node(Eigen::Vector2d(wx[k], wy[k]), weight[k]);
+      // The piece's nodes in one loop over them (vector instructions), then to the batch.
+      const double factor = edgeSign * sign * std::fabs(distance) * (s1 - s0);
+      double wx[kMaxEdgePoints], wy[kMaxEdgePoints], weight[kMaxEdgePoints];
+      for (int k = 0; k < edgePoints; ++k) {
+        const double s = s0 + (s1 - s0) * nodes[k];
+        wx[k] = closest.x() + s * direction.x();
+        wy[k] = closest.y() + s * direction.y();
+        weight[k] = factor * weights[k] / (wx[k] * wx[k] + wy[k] * wy[k]);
+      }
+      for (int k = 0; k < edgePoints; ++k) {
+        if constexpr (kBatched) {
+          batch.wx[batch.count] = wx[k];
+          batch.wy[batch.count] = wy[k];
+          batch.weight[batch.count] = weight[k];
+          if (++batch.count == kLanes) {
+            accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, loose_, laneT);
+            batch.count = 0;
           }
+        } else {
+          node(Eigen::Vector2d(wx[k], wy[k]), weight[k]);
         }
       }
     }
+  };
+  for (std::size_t r = 0; r < visible.count(); ++r) {
+    const SourceRing& ring = visible.ring(r);
+    const std::size_t count = ring.size();
+    for (std::size_t e = 0; e < count; ++e) edge(ring[e], ring[(e + 1) % count], visible.sign(r));
+  }
+  for (std::size_t s = 0; s < visible.segmentCount(); ++s) {
+    edge(visible.segmentStart(s), visible.segmentEnd(s), visible.segmentSign(s));
   }
   if constexpr (kBatched) {
     if (batch.count > 0) {
