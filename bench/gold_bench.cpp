@@ -16,8 +16,9 @@
 // receiver in front of the source's plane, exact_gold.h). The `_genz_malik` variants force
 // Genz-Malik on every link, for comparison.
 // The soup's exact gold is capped at 20,000 receiver points (it does not converge there).
-// unionClipper / unionBoostGeometry: the shadows' union by Clipper (the one used) and by
-// Boost.Geometry, on the same overlapping quadrilaterals (counter `area` checks they agree).
+// unionClipper / unionBoostGeometry / unionOutline: the shadows' union by Clipper (the exact
+// gold's fallback), by Boost.Geometry, and as the outline's pieces (what the exact gold takes),
+// on the same overlapping quadrilaterals (counter `area` checks they agree).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <polyclipping/clipper.hpp>
@@ -29,11 +30,13 @@
 #include <random>
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "experiments/scenarios/probed_links.h"
 #include "reference/exact_gold.h"
+#include "reference/exact_visibility.h"
 #include "reference/gold_reference.h"
 
 namespace radquad {
@@ -223,7 +226,50 @@ void unionBoostGeometry(benchmark::State& state) {
   state.counters["area"] = area;
 }
 
+// The outline of the union (what the exact gold takes; reference/exact_visibility.h), on the
+// same quadrilaterals: its pieces, and their area by the shoelace sum over them.
+void unionOutline(benchmark::State& state) {
+  const auto quads = overlappingQuads(int(state.range(0)));
+  std::vector<SourceRing> rings;
+  std::vector<Eigen::Vector4d> bounds;
+  std::vector<std::vector<std::uint32_t>> onBorder;
+  std::vector<std::size_t> members;
+  for (const auto& quad : quads) {
+    SourceRing ring;
+    Eigen::Vector4d box(1e300, 1e300, -1e300, -1e300);
+    for (const auto& p : quad) {
+      ring.push_back({p[0], p[1]});
+      box = {std::min(box[0], p[0]), std::min(box[1], p[1]), std::max(box[2], p[0]),
+             std::max(box[3], p[1])};
+    }
+    if (ringArea(ring) < 0.0) std::reverse(ring.begin(), ring.end());
+    members.push_back(rings.size());
+    rings.push_back(ring);
+    bounds.push_back(box);
+    onBorder.push_back(std::vector<std::uint32_t>(ring.size(), 0));
+  }
+  const SourceRing border = {{-1, -1}, {2, -1}, {2, 2}, {-1, 2}};
+  UnionOutline outline;
+  VisibleRings pieces;
+  double area = 0.0;
+  for (auto _ : state) {
+    pieces.clear();
+    const bool closed = outline.add(rings, members, bounds, onBorder, border, 1.0, pieces);
+    benchmark::DoNotOptimize(closed);
+    area = 0.0;
+    for (std::size_t s = 0; s < pieces.segmentCount(); ++s) {
+      const Eigen::Vector2d& a = pieces.segmentStart(s);
+      const Eigen::Vector2d& b = pieces.segmentEnd(s);
+      area += 0.5 * (a.x() * b.y() - a.y() * b.x());
+    }
+    benchmark::DoNotOptimize(area);
+  }
+  state.counters["area"] = area;
+  state.counters["pieces"] = double(pieces.segmentCount());
+}
+
 BENCHMARK(unionClipper)->Arg(2)->Arg(6)->Arg(20)->Unit(benchmark::kMicrosecond);
+BENCHMARK(unionOutline)->Arg(2)->Arg(6)->Arg(20)->Unit(benchmark::kMicrosecond);
 BENCHMARK(unionBoostGeometry)->Arg(2)->Arg(6)->Arg(20)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

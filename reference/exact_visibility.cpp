@@ -331,24 +331,17 @@ void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) 
     }
     const double area = ringArea(shadow);
     if (area == 0.0 || !std::isfinite(area)) continue;
-    // Per vertex, the planes of S''s edges it lies on, as the clip decides (within their
-    // slacks): bit s for edge s of S'.
-    if (shadowCount == shadowSides_.size()) shadowSides_.emplace_back();
-    std::vector<std::uint32_t>& sides = shadowSides_[shadowCount];
-    sides.clear();
-    for (const auto& q : *clipped) {
-      std::uint32_t on = 0;
-      for (std::size_t k = 2; k < pyramid.size(); ++k) {
-        if (std::fabs(pyramid[k].head<3>().dot(q) + pyramid[k][3]) <= slack_[k]) {
-          on |= std::uint32_t(1) << pyramidSide_[k];
-        }
-      }
-      sides.push_back(on);
-    }
+    // The clipped polygon in 3D, in the ring's order, and its occluder: for the outline,
+    // which asks which of its vertices lie on the planes of S''s edges (shadowSides).
+    if (shadowCount == shadowPolygons_.size()) shadowPolygons_.emplace_back();
+    std::vector<Eigen::Vector3d>& polygon3d = shadowPolygons_[shadowCount];
+    polygon3d.assign(clipped->begin(), clipped->end());
     if (area < 0.0) {
       std::reverse(shadow.begin(), shadow.end());
-      std::reverse(sides.begin(), sides.end());
+      std::reverse(polygon3d.begin(), polygon3d.end());
     }
+    if (shadowCount == shadowCandidate_.size()) shadowCandidate_.push_back(0);
+    shadowCandidate_[shadowCount] = c;
     ++shadowCount;
     shadowBounds_.push_back(bounds);
   }
@@ -427,6 +420,36 @@ void ExactVisibility::subtractClipperUnion(std::size_t shadowCount, VisibleRings
 }
 
 bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out) {
+  overlapping_.clear();
+  if (shadowSides_.size() < shadowCount) shadowSides_.resize(shadowCount);
+  for (std::size_t i = 0; i < shadowCount; ++i) {
+    if (!overlaps_[i]) continue;
+    overlapping_.push_back(i);
+    // Per vertex, the planes of S''s edges it lies on, as the clip decides (within the
+    // slacks it used for this occluder): bit s for edge s of S'.
+    const double reach = candidateReach_[shadowCandidate_[i]];
+    std::vector<std::uint32_t>& sides = shadowSides_[i];
+    sides.clear();
+    for (const auto& q : shadowPolygons_[i]) {
+      std::uint32_t on = 0;
+      for (std::size_t k = 2; k < pyramid_.size(); ++k) {
+        const auto& [norm, offset] = planeNorms_[k];
+        if (std::fabs(pyramid_[k].head<3>().dot(q) + pyramid_[k][3]) <=
+            slackOf(norm, offset, reach)) {
+          on |= std::uint32_t(1) << pyramidSide_[k];
+        }
+      }
+      sides.push_back(on);
+    }
+  }
+  return outline_.add(shadows_, overlapping_, shadowBounds_, shadowSides_, out.ring(0), -1.0, out);
+}
+
+bool UnionOutline::add(const std::vector<SourceRing>& rings,
+                       const std::vector<std::size_t>& members,
+                       const std::vector<Eigen::Vector4d>& bounds,
+                       const std::vector<std::vector<std::uint32_t>>& onBorder,
+                       const SourceRing& border, double sign, VisibleRings& out) {
   // The union's boundary is made of the pieces of the shadows' edges that lie outside every
   // other shadow; each keeps its shadow's (counter-clockwise) direction, so the pieces about
   // a hole of the union run clockwise about it. A piece of an edge of shadow i is covered by
@@ -443,20 +466,17 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
   //  - An edge shorter than 1e-12 of the shadows' extent (a vertex repeated where an
   //    occluder's vertex lies on a pyramid plane) cuts nothing as a line, its direction being
   //    rounding (its neighbours' lines bound the shadow there); as a piece it counts.
-  overlapping_.clear();
   Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
-  for (std::size_t i = 0; i < shadowCount; ++i) {
-    if (!overlaps_[i]) continue;
-    overlapping_.push_back(i);
-    low = low.cwiseMin(shadowBounds_[i].head<2>());
-    high = high.cwiseMax(shadowBounds_[i].tail<2>());
+  for (std::size_t i : members) {
+    low = low.cwiseMin(bounds[i].head<2>());
+    high = high.cwiseMax(bounds[i].tail<2>());
   }
   constexpr double kOnLine = 1e-13;
   const double shortest = 1e-12 * (high - low).maxCoeff();
   // Edge e of shadow i, as (i, e).
   using EdgeKey = std::pair<std::size_t, std::size_t>;
   const auto ends = [&](const EdgeKey& key) {
-    const SourceRing& ring = shadows_[key.first];
+    const SourceRing& ring = rings[key.first];
     return std::pair<const Eigen::Vector2d&, const Eigen::Vector2d&>(
         ring[key.second], ring[(key.second + 1) % ring.size()]);
   };
@@ -487,23 +507,23 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
     return std::fabs(line.x() * (u.y() - origin.y()) - line.y() * (u.x() - origin.x())) <= onLine &&
            std::fabs(line.x() * (w.y() - origin.y()) - line.y() * (w.x() - origin.x())) <= onLine;
   };
-  // S' (the first ring; every shadow lies inside it): a shadow edge along one of its edges
+  // S' (`border`; every shadow lies inside it): a shadow edge along one of its edges
   // (both ends on the pyramid plane through x and that edge, as the 3D clip placed them)
   // bounds the union wherever it runs, and as a line it cuts nothing inside S'. Those edges
   // are not pieces: per edge of S', the parts of it they cover are merged and given as
   // segments from the first edge's start to the last one's end, vertices of the shadows
   // themselves, where the shadows' other edges begin and end: the outline closes up there to
   // the bit.
-  const SourceRing& front = out.ring(0);
+  const SourceRing& front = border;
   const std::size_t sides = front.size();
   // Per shadow and edge: (edge vector, squared length or 0 if too short to cut by, the edge of
   // S' it runs along or -1).
-  if (edgeLines_.size() < shadowCount) edgeLines_.resize(shadowCount);
-  std::vector<BorderPart>& border = borderParts_;
-  border.clear();
-  for (std::size_t i : overlapping_) {
-    const SourceRing& ring = shadows_[i];
-    const std::vector<std::uint32_t>& on = shadowSides_[i];
+  if (edgeLines_.size() < rings.size()) edgeLines_.resize(rings.size());
+  std::vector<BorderPart>& along = borderParts_;
+  along.clear();
+  for (std::size_t i : members) {
+    const SourceRing& ring = rings[i];
+    const std::vector<std::uint32_t>& on = onBorder[i];
     std::vector<Eigen::Vector4d>& lines = edgeLines_[i];
     lines.clear();
     for (std::size_t f = 0, m = ring.size(); f < m; ++f) {
@@ -511,20 +531,20 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
       const Eigen::Vector2d& b = ring[(f + 1) % m];
       const Eigen::Vector2d line = b - a;
       const bool cuts = line.cwiseAbs().maxCoeff() >= shortest;
-      double along = -1.0;
+      double borderSide = -1.0;
       const std::uint32_t common = on[f] & on[(f + 1) % m];
       if (common != 0 && cuts) {
         const std::size_t k = std::size_t(std::countr_zero(common));
         const Eigen::Vector2d& c = front[k];
         const Eigen::Vector2d side = front[(k + 1) % sides] - c;
         if (line.dot(side) > 0.0) {
-          along = double(k);
+          borderSide = double(k);
           const double squared = side.squaredNorm();
-          border.push_back({k, (a - c).dot(side) / squared, (b - c).dot(side) / squared, a, b,
+          along.push_back({k, (a - c).dot(side) / squared, (b - c).dot(side) / squared, a, b,
                             on[f], on[(f + 1) % m]});
         }
       }
-      lines.push_back({line.x(), line.y(), cuts ? line.squaredNorm() : 0.0, along});
+      lines.push_back({line.x(), line.y(), cuts ? line.squaredNorm() : 0.0, borderSide});
     }
   }
   std::vector<CoveredPart>& covered = covered_;
@@ -533,18 +553,18 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
   // overlap. Where the border turns a corner of S' (the last part on one side ends on the
   // next side's plane, and the first part there starts on this side's), the shadows' corners
   // may be different vertices an ulp apart: both parts end at S''s own corner.
-  std::sort(border.begin(), border.end(), [](const BorderPart& x, const BorderPart& y) {
+  std::sort(along.begin(), along.end(), [](const BorderPart& x, const BorderPart& y) {
     return x.side < y.side || (x.side == y.side && x.from < y.from);
   });
   std::vector<BorderPart>& merged = mergedBorder_;
   merged.clear();
-  for (std::size_t k = 0; k < border.size();) {
-    BorderPart part = border[k];
-    for (++k; k < border.size() && border[k].side == part.side && border[k].from <= part.to; ++k) {
-      if (border[k].to > part.to) {
-        part.to = border[k].to;
-        part.end = border[k].end;
-        part.endOn = border[k].endOn;
+  for (std::size_t k = 0; k < along.size();) {
+    BorderPart part = along[k];
+    for (++k; k < along.size() && along[k].side == part.side && along[k].from <= part.to; ++k) {
+      if (along[k].to > part.to) {
+        part.to = along[k].to;
+        part.end = along[k].end;
+        part.endOn = along[k].endOn;
       }
     }
     merged.push_back(part);
@@ -564,9 +584,9 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
       break;  // the first on that side (in order)
     }
   }
-  for (const BorderPart& part : merged) out.addSegment(part.start, part.end, -1.0);
-  for (std::size_t i : overlapping_) {
-    const SourceRing& shadow = shadows_[i];
+  for (const BorderPart& part : merged) out.addSegment(part.start, part.end, sign);
+  for (std::size_t i : members) {
+    const SourceRing& shadow = rings[i];
     for (std::size_t e = 0, n = shadow.size(); e < n; ++e) {
       const Eigen::Vector2d& p = shadow[e];
       const Eigen::Vector2d& q = shadow[(e + 1) % n];
@@ -576,16 +596,16 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
       const double lengthSquared = pq.squaredNorm();
       const Eigen::Vector2d edgeLow = p.cwiseMin(q), edgeHigh = p.cwiseMax(q);
       covered.clear();
-      for (std::size_t j : overlapping_) {
+      for (std::size_t j : members) {
         if (j == i) continue;
-        const Eigen::Vector4d& bounds = shadowBounds_[j];
-        if (bounds[0] > edgeHigh.x() + kOnLine || edgeLow.x() > bounds[2] + kOnLine ||
-            bounds[1] > edgeHigh.y() + kOnLine || edgeLow.y() > bounds[3] + kOnLine) {
+        const Eigen::Vector4d& box = bounds[j];
+        if (box[0] > edgeHigh.x() + kOnLine || edgeLow.x() > box[2] + kOnLine ||
+            box[1] > edgeHigh.y() + kOnLine || edgeLow.y() > box[3] + kOnLine) {
           continue;
         }
         // The part [from, to] of the edge (p + t pq, t in [0, 1]) inside shadow j, and the
         // edges of j it enters and leaves by (none: the edge's own end).
-        const SourceRing& cover = shadows_[j];
+        const SourceRing& cover = rings[j];
         const std::vector<Eigen::Vector4d>& lines = edgeLines_[j];
         CoveredPart part{0.0, 1.0, kNoEdge, kNoEdge};
         for (std::size_t f = 0, m = cover.size(); f < m && part.from < part.to; ++f) {
@@ -634,7 +654,7 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
       Eigen::Vector2d startPoint = p;
       for (const CoveredPart& part : covered) {
         if (part.from > start) {
-          out.addSegment(startPoint, pointAt(part.cover, part.fromEdge, part.from), -1.0);
+          out.addSegment(startPoint, pointAt(part.cover, part.fromEdge, part.from), sign);
         }
         if (part.to > start) {
           start = part.to;
@@ -642,15 +662,15 @@ bool ExactVisibility::subtractOutline(std::size_t shadowCount, VisibleRings& out
         }
         if (start >= 1.0) break;
       }
-      if (start < 1.0) out.addSegment(startPoint, q, -1.0);
+      if (start < 1.0) out.addSegment(startPoint, q, sign);
     }
   }
-  if (closeOutline(first, 1e-11 * std::max(1.0, (high - low).maxCoeff()), out)) return true;
+  if (close(first, 1e-11 * std::max(1.0, (high - low).maxCoeff()), sign, out)) return true;
   out.truncateSegments(first);
   return false;
 }
 
-bool ExactVisibility::closeOutline(std::size_t first, double tolerance, VisibleRings& out) {
+bool UnionOutline::close(std::size_t first, double tolerance, double sign, VisibleRings& out) {
   // Pieces meet where an edge's own vertex ends one and starts the next, or at the crossing of
   // two edges computed once: the same point to the bit. Where the choice between two edges
   // along one line changes hands, where a vertex lies on another shadow's edge, or where a
@@ -720,7 +740,7 @@ bool ExactVisibility::closeOutline(std::size_t first, double tolerance, VisibleR
       }
     }
     if (chosen == kNoEdge) return false;
-    out.addSegment(end, starts[chosen].first, -1.0);
+    out.addSegment(end, starts[chosen].first, sign);
     starts[chosen].second = kNoEdge;
     endIndex = kNoEdge;
   }

@@ -122,6 +122,49 @@ enum class ShadowUnion {
   clipper,
 };
 
+// The outline of the union of convex counter-clockwise rings lying inside a convex
+// counter-clockwise `border` ring (in the exact gold: the overlapping shadows, inside S'), as
+// the pieces of the rings' edges that no other ring covers, in their rings' direction: what
+// Lambert's formula and the polar integral need, without forming polygons (details in
+// exact_visibility.cpp). Scratch storage is kept from call to call.
+class UnionOutline {
+ public:
+  // The rings rings[i], i in `members`, with their boxes bounds[i] (low u, low v, high u,
+  // high v) and, per vertex, onBorder[i][v]: bit s set where the vertex lies on the line of
+  // the border's edge s (as the caller's clip placed it; 0 where not known). Adds the pieces
+  // to `out` with sign `sign`; false, and `out` as it was, where they do not close up.
+  bool add(const std::vector<SourceRing>& rings, const std::vector<std::size_t>& members,
+           const std::vector<Eigen::Vector4d>& bounds,
+           const std::vector<std::vector<std::uint32_t>>& onBorder, const SourceRing& border,
+           double sign, VisibleRings& out);
+
+ private:
+  // Closes the pieces from segment `first` on: every end meets a start.
+  bool close(std::size_t first, double tolerance, double sign, VisibleRings& out);
+
+  // The parts [from, to] of one ring's edge that ring `cover` covers, and the edges of
+  // `cover` they begin and end on (kNoEdge: the covered edge's own end).
+  static constexpr std::size_t kNoEdge = std::size_t(-1);
+  struct CoveredPart {
+    double from, to;
+    std::size_t fromEdge, toEdge;
+    std::size_t cover = 0;
+  };
+  std::vector<CoveredPart> covered_;
+  // Per ring: (edge vector, squared length, the edge of the border it runs along or -1).
+  std::vector<std::vector<Eigen::Vector4d>> edgeLines_;
+  // A ring's edge along edge `side` of the border, from parameter `from` to `to` along it;
+  // the border's edges whose lines its start and end lie on (bits, as in add()).
+  struct BorderPart {
+    std::size_t side;
+    double from, to;
+    Eigen::Vector2d start, end;
+    std::uint32_t startOn, endOn;
+  };
+  std::vector<BorderPart> borderParts_, mergedBorder_;
+  std::vector<std::pair<Eigen::Vector2d, std::size_t>> starts_, ends_;  // close()'s
+};
+
 class ExactVisibility {
  public:
   // Keeps references to the link's patches and occluder scene; culls the occluders.
@@ -144,8 +187,6 @@ class ExactVisibility {
   // first ring is S'); false (and `out` as it was) where the pieces do not close up (then
   // Clipper forms the union).
   bool subtractOutline(std::size_t shadowCount, VisibleRings& out);
-  // Closes the outline's pieces from segment `first` on: every end meets a start.
-  bool closeOutline(std::size_t first, double tolerance, VisibleRings& out);
   // Subtracts it by Clipper's union.
   void subtractClipperUnion(std::size_t shadowCount, VisibleRings& out);
 
@@ -162,7 +203,11 @@ class ExactVisibility {
   std::vector<std::pair<double, double>> planeNorms_;  // per plane: |normal|_1, |offset|
   std::vector<std::size_t> cutting_;  // the planes that cut one candidate
   std::vector<SourceRing> shadows_;  // only the first ones of a call are its shadows
-  // Per shadow vertex, the planes through x and S''s edges it lies on: bit s for edge s.
+  // Per shadow: its clipped occluder polygon in 3D (in the ring's order), the candidate it
+  // comes from, and per vertex the planes through x and S''s edges it lies on (bit s for
+  // edge s; formed for the outline only).
+  std::vector<std::vector<Eigen::Vector3d>> shadowPolygons_;
+  std::vector<std::size_t> shadowCandidate_;
   std::vector<std::vector<std::uint32_t>> shadowSides_;
   std::vector<int> pyramidSide_;  // per pyramid plane, the edge of S' it stands on, or -1
   std::vector<Eigen::Vector4d> shadowBounds_;
@@ -173,27 +218,7 @@ class ExactVisibility {
   std::vector<SourceRing> intersections_;
   std::vector<Eigen::Vector4d> intersectionBounds_;  // their boxes, as shadowBounds_
   SourceRing scratchRing_;
-  // The outline: the parts [from, to] of one shadow edge that shadow `cover` covers, and the
-  // edges of `cover` they begin and end on (kNoEdge: the covered edge's own end).
-  static constexpr std::size_t kNoEdge = std::size_t(-1);
-  struct CoveredPart {
-    double from, to;
-    std::size_t fromEdge, toEdge;
-    std::size_t cover = 0;
-  };
-  std::vector<CoveredPart> covered_;
-  // Per shadow: (edge vector, squared length, the edge of S' it runs along or -1).
-  std::vector<std::vector<Eigen::Vector4d>> edgeLines_;
-  // A shadow edge along edge `side` of S', from parameter `from` to `to` along it; the planes
-  // of S''s edges its start and end lie on (bits, as in shadowSides_).
-  struct BorderPart {
-    std::size_t side;
-    double from, to;
-    Eigen::Vector2d start, end;
-    std::uint32_t startOn, endOn;
-  };
-  std::vector<BorderPart> borderParts_, mergedBorder_;
-  std::vector<std::pair<Eigen::Vector2d, std::size_t>> starts_, ends_;  // closeOutline's
+  UnionOutline outline_;
   std::vector<std::pair<std::size_t, std::size_t>> setStack_;
   ClipperLib::Paths clipperPaths_, clipperUnion_;
 };
