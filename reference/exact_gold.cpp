@@ -180,14 +180,19 @@ class CriticalLineCubature {
     initial_ = piecesBetween(std::move(breaks));
   }
 
-  // Receiver points the initial breakpoints alone take (no bisection): the cost floor.
-  std::uint64_t floorPoints() const {
-    std::uint64_t points = 0;
+  // Whether the receiver points the initial breakpoints alone take (no bisection, the cost
+  // floor) are at most `limit`. Counting stops once past it: each line's count sorts its
+  // crossings with every segment, and a soup's tens of thousands of segments would make the
+  // whole count cost more than the gold itself.
+  bool floorWithin(double limit) const {
+    const double perCell = double(pair_.points()) * double(pair_.points());
+    if (perCell * double(initial_.size()) > limit) return false;
+    double points = 0.0;
     for (const KronrodPiece& piece : initial_) {
-      const std::size_t pieces = piecesBetween(lineBreaks(0.5 * (piece.a + piece.b))).size();
-      points += std::uint64_t(pair_.points()) * std::uint64_t(pair_.points()) * pieces;
+      points += perCell * double(piecesBetween(lineBreaks(0.5 * (piece.a + piece.b))).size());
+      if (points > limit) return false;
     }
-    return points;
+    return true;
   }
 
   // A part of K known beforehand (the unoccluded part, with its own error): the run then
@@ -490,7 +495,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     if (!contact.empty()) {
       threshold = std::max(threshold, 100.0 * floorLimit * (1e-7 / options.tolerance));
     }
-    if (double(cubature.floorPoints()) <= threshold) {
+    if (cubature.floorWithin(threshold)) {
       cubature.run(value, error);
       integrand.points = cubature.points();
     } else {
