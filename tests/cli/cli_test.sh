@@ -226,19 +226,21 @@ assert gold["outer_method"] == "critical lines", gold["outer_method"]
 assert gold["critical_segments"] >= 2, gold["critical_segments"]
 PY
 check triangle_half_blocked $?
-# Progress of a slow gold (three overlapping blockers at a tight tolerance, about 3 s): lines
-# on stderr about once a second after the first second, none with --quiet; stdout the same.
-"$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-11 \
-  >"$scratch/slow.json" 2>"$scratch/slow.err"
+# Progress of a slow gold (three overlapping blockers at degree 2 and a tight tolerance,
+# about 3.4 s on two cores, 1.9 million receiver points; at degree 0 it took under a second,
+# too close to the first progress line): lines on stderr about once a second after the first
+# second, none with --quiet; stdout the same.
+"$radquad" reference "$fixtures/three_blockers_link.json" --gold --degree 2 \
+  --gold-tolerance 1e-11 >"$scratch/slow.json" 2>"$scratch/slow.err"
 check slow_gold_status $?
 grep -q "radquad reference: gold: [0-9]* receiver points, [0-9.]* s" "$scratch/slow.err"
 check slow_gold_progress $?
-"$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-11 --quiet \
-  >"$scratch/slow_quiet.json" 2>"$scratch/slow_quiet.err"
+"$radquad" reference "$fixtures/three_blockers_link.json" --gold --degree 2 \
+  --gold-tolerance 1e-11 --quiet >"$scratch/slow_quiet.json" 2>"$scratch/slow_quiet.err"
 [ ! -s "$scratch/slow_quiet.err" ] && cmp -s "$scratch/slow.json" "$scratch/slow_quiet.json"
 check slow_gold_quiet $?
 # A gold that cannot reach its tolerance within its budget (1e-15 on the same link, about
-# 8 s): its JSON, converged false, on stdout for diagnosis, the failure on stderr, status 3.
+# a second on two cores): its JSON, converged false, on stdout for diagnosis, the failure on stderr, status 3.
 "$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-15 --quiet \
   >"$scratch/unconverged.json" 2>"$scratch/unconverged.err"
 [ $? -eq 3 ] && grep -q "three_blockers_link.json: the gold did not reach its tolerance (1e-15)" \
