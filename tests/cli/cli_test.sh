@@ -239,8 +239,9 @@ check slow_gold_progress $?
   --gold-tolerance 1e-11 --quiet >"$scratch/slow_quiet.json" 2>"$scratch/slow_quiet.err"
 [ ! -s "$scratch/slow_quiet.err" ] && cmp -s "$scratch/slow.json" "$scratch/slow_quiet.json"
 check slow_gold_quiet $?
-# A gold that cannot reach its tolerance within its budget (1e-15 on the same link, about
-# a second on two cores): its JSON, converged false, on stdout for diagnosis, the failure on stderr, status 3.
+# A gold that cannot reach its tolerance within its budget (1e-15 on the same link, about a
+# second on two cores): its JSON, converged false, on stdout for diagnosis, the failure on
+# stderr, status 3.
 "$radquad" reference "$fixtures/three_blockers_link.json" --gold --gold-tolerance 1e-15 --quiet \
   >"$scratch/unconverged.json" 2>"$scratch/unconverged.err"
 [ $? -eq 3 ] && grep -q "three_blockers_link.json: the gold did not reach its tolerance (1e-15)" \
