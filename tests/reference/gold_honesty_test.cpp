@@ -1,7 +1,8 @@
 // The exact gold's error estimate on the study's own links: over the partial links the
 // study's generator draws (one blocker, several blockers, slats; the soups take the dense
-// gold), at degrees 0 and 2, the Genz-Malik gold at the study's tolerance is compared with a gold 3,000 times tighter by the critical lines (an outer integration
-// of its own). Every coefficient's actual error must stay below the estimate. Label "accuracy".
+// gold), at degrees 0 and 2, the Genz-Malik gold at the study's tolerance is compared with a
+// gold 3,000 times tighter by the critical lines (an outer integration of its own). Every
+// coefficient's actual error must stay below the estimate. Label "accuracy".
 // Where an occluder stands on the receiver the inner integral jumps, and the default takes the
 // jump lines instead of Genz-Malik, whose estimate misjudges the jump (the second test).
 #include <gtest/gtest.h>
