@@ -157,7 +157,9 @@ Vec PathSampler::estimate(int start, std::uint32_t sample, ChunkSums& sums) cons
     // (1/A_e) / (1/A_e + G).
     for (std::size_t k = 0; k < emitters_.size(); ++k) {
       const int e = emitters_[k];
-      if (e == p) continue;  // a planar patch does not light itself
+      // A patch does not light itself or its plane mates (trace_scene.h): they share its
+      // plane, or are the other face of a two-sided surface, and first-hit rays ignore them too.
+      if (rays_.mates(p, e)) continue;
       const TracePatch& emitter = patches_[e];
       const Uniforms point = draw(sample, start, vertex, kUseEmitter + std::uint32_t(k));
       const Vec y = emitter.patch.pointAt(point.first, point.second);

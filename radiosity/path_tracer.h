@@ -13,11 +13,13 @@
 //   in cell (k / m, k % m) of an m x m grid over (u,v), the other N - m^2 are uniform (every
 //   sample set is then uniform on average, so the mean is unbiased). The sample's estimate is
 //   E_i + rho_i I^(x).
-// - I^ at a vertex x on patch p: next-event estimation to every emitter e != p (a patch with
-//   an emission channel > 0) with one uniform point y on e, weighted E_e G V / (1/A_e + G);
-//   plus one cosine-weighted direction, whose first hit y on patch h (p ignored) adds
-//   E_h G / (G + 1/A_h) when it is h's front side and h emits; the path then continues from y
-//   with throughput *= rho_h. These are the balance-heuristic weights of the two strategies
+// - I^ at a vertex x on patch p: next-event estimation to every emitter e (a patch with an
+//   emission channel > 0) other than p's plane mates (trace_scene.h: p, and the patches in its
+//   plane it touches, such as the other face of a two-sided panel) with one uniform point y on
+//   e, weighted E_e G V / (1/A_e + G); plus one cosine-weighted direction, whose first hit y
+//   on patch h (p's plane mates ignored; on a two-sided surface, the face turned to the ray)
+//   adds E_h G / (G + 1/A_h) when it is h's front side and h emits; the path then continues
+//   from y with throughput *= rho_h. These are the balance-heuristic weights of the two strategies
 //   in area measure (pdfs 1/A_e and G), so both terms are bounded by E_e, even for points
 //   touching an emitter. A back-side hit or an escaping ray ends the path with nothing.
 // - Russian roulette from the fourth bounce on: survival probability
