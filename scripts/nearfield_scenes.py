@@ -14,7 +14,6 @@ Usage: /usr/bin/python3 scripts/nearfield_scenes.py [--out DIR]
 """
 import argparse
 import json
-import math
 import os
 
 WHITE = [0.72, 0.7, 0.66]
@@ -199,6 +198,19 @@ def block_spot():
     return s
 
 
+def block_wallwash():
+    s = Scene()
+    X, Y, Z = 4.0, 3.0, 4.0
+    room(s, (X, Y, Z))
+    s.box("block", [0.5, 0.0, 1.5], [1.0, 1.0, 1.0], WHITE, faces=("-x", "+x", "+y", "-z", "+z"))
+    # A 20 x 20 cm emitter 30 cm from the left wall, 2.1-2.3 m high, facing the wall: the
+    # room is lit only by the wall's hot spot, which the block's -x face sees from 0.5 m.
+    s.patch("wall washer", [0.3, 2.1, 1.9], [0, 0.2, 0], [0, 0, 0.2], [-1, 0, 0], BLACK,
+            [400, 400, 400])
+    s.camera = camera([3.9, 1.6, 3.9], [0.5, 0.8, 1.8])
+    return s
+
+
 def light_back():
     s = Scene()
     X, Y, Z = 4.0, 3.0, 4.0
@@ -302,6 +314,7 @@ SCENES = {
     "square_under_ceiling": square_under_ceiling,
     "cornell_blocks": cornell_blocks,
     "block_spot": block_spot,
+    "block_wallwash": block_wallwash,
     "light_back": light_back,
     "shelf": shelf,
     "office": office,

@@ -7,11 +7,11 @@ Every scene NAME.json in radiosity/scenes/ has a reference, radiosity/scenes/ref
   there, with standard error 0);
 - "reference": "trace" for every other scene: the output of `radquad trace NAME.json --seed
   SEED --samples N` (without its elapsed_seconds, so a regeneration with the same binary
-  gives the same file byte for byte).
+  gives the same file byte for byte), N = 2^21 but where WRITE_SAMPLES says otherwise.
 
 Write (regenerate) the references:
-  /usr/bin/python3 scripts/scene_references.py write [--scenes a,b] [--samples N]
-      [--office-samples N] [--seed S] [--radquad PATH]
+  /usr/bin/python3 scripts/scene_references.py write [--scenes a,b] [--samples N] [--seed S]
+      [--radquad PATH]
 Check that they still describe what `radquad trace` computes: a fresh, short trace of every
 scene (another seed) must agree with the committed reference patch by patch (below); exits
 1 when it does not, 2 on bad input:
@@ -20,10 +20,10 @@ scene (another seed) must agree with the committed reference patch by patch (bel
 The check, per scene, over every patch and channel with a defined score
 z = (fresh - reference) / sqrt(se_fresh^2 + se_reference^2):
 - no |z| above 5 (for unbiased estimates P(|z| > 5) is 6e-7 per comparison);
-- the mean of z^2 over the scene's patches (each patch's channels averaged, since grey
-  patches repeat one value three times) below 1 + 4 sqrt(2 / patches): four standard
-  deviations of the mean of independent chi-square(1) variables, so a shift of the whole
-  scene by one standard error of the short trace shows while noise does not.
+- the mean of z^2 over the scene's n patches (each patch's channels averaged, since grey
+  patches repeat one value three times) below the 1 - 1e-4 quantile of chi-square(n) / n
+  (Wilson and Hilferty's approximation), so a shift of the whole scene by a standard error
+  or two of the short trace shows while noise does not.
 A furnace's fresh trace is checked against its exact value the same way (se_reference = 0).
 """
 import argparse
@@ -40,8 +40,13 @@ from solver_accuracy import write_atomically  # scripts/: beside this file
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = os.path.join(ROOT, "radiosity/scenes")
 REFERENCES = os.path.join(SCENES, "references")
-# Scenes whose trace at the default sample count would take much longer than the others.
-REDUCED = {"office"}
+# Paths per patch where the default (2^21 to write, 2^14 to check) does not fit: the office
+# would take much longer than the others; block_wallwash, lit only by a hot spot on a wall, has
+# several times the others' variance, so it takes sixteen times the paths. The furnaces are
+# checked with fewer (their paths at rho = 0.99 are a hundred bounces long).
+WRITE_SAMPLES = {"office": 2 ** 20, "block_wallwash": 2 ** 23}
+CHECK_SAMPLES = {"office": 2 ** 12, "block_wallwash": 2 ** 18, "furnace_0.5": 2 ** 12,
+                 "furnace_0.9": 2 ** 12, "furnace_0.99": 2 ** 12}
 
 
 def scene_names():
@@ -80,7 +85,8 @@ def exact_reference(name, scene, rho):
     value = 1.0 / (1.0 - rho)
     return {"reference": "exact",
             "scene": name + ".json",
-            "exact": f"a closed box, every face emitting 1 with reflectance {rho}: B = 1 / (1 - rho)",
+            "exact": f"a closed box, every face emitting 1 with reflectance {rho}: "
+                     "B = 1 / (1 - rho)",
             "patches": [{"name": p["name"], "mean_radiosity": [value] * 3,
                          "standard_error": [0.0] * 3} for p in scene["patches"]]}
 
@@ -104,7 +110,7 @@ def write(args):
             reference = exact_reference(name, scene, rho)
             print(f"{name}: exact, {1 / (1 - rho):.6g}", file=sys.stderr)
         else:
-            samples = args.office_samples if name in REDUCED else args.samples
+            samples = args.samples or WRITE_SAMPLES.get(name, 2 ** 21)
             print(f"{name}: tracing {samples} paths per patch (seed {args.seed})", file=sys.stderr)
             traced, cpu = trace(args.radquad, path, samples, args.seed)
             traced.pop("elapsed_seconds")
@@ -134,6 +140,13 @@ def scores(fresh, reference):
     return out
 
 
+def chi_square_mean_bound(n):
+    """The 1 - 1e-4 quantile of the mean of n independent chi-square(1) variables, by Wilson
+    and Hilferty's cube-root normal approximation (3.719: the normal's 1 - 1e-4 quantile)."""
+    h = 2.0 / (9.0 * n)
+    return (1.0 - h + 3.719 * math.sqrt(h)) ** 3
+
+
 def check(args):
     failures = 0
     for name in args.scenes:
@@ -142,9 +155,7 @@ def check(args):
         if not os.path.exists(reference_path):
             sys.exit(f"scene_references: {reference_path}: no reference (write it)")
         reference = json.load(open(reference_path))
-        samples = args.office_samples if name in REDUCED else args.samples
-        if reference["reference"] == "exact":
-            samples = args.furnace_samples
+        samples = args.samples or CHECK_SAMPLES.get(name, 2 ** 14)
         fresh, cpu = trace(args.radquad, path, samples, args.seed)
         per_patch = scores(fresh, reference)
         worst = max(((abs(s), patch, "rgb"[c]) for patch, z in per_patch
@@ -152,7 +163,7 @@ def check(args):
         means = [sum(s * s for s in z if s is not None) / len([s for s in z if s is not None])
                  for _, z in per_patch if any(s is not None for s in z)]
         mean_square = sum(means) / len(means) if means else 0.0
-        bound = 1 + 4 * math.sqrt(2 / max(1, len(means)))
+        bound = chi_square_mean_bound(max(1, len(means)))
         bad = worst[0] > 5 or mean_square > bound
         failures += bad
         print(f"{'FAIL' if bad else 'ok'}: {name} ({reference['reference']}, {samples} paths per "
@@ -167,17 +178,15 @@ def check(args):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("mode", choices=["write", "check"])
-    parser.add_argument("--radquad", default=os.path.join(ROOT, "build/release/experiments/radquad"))
+    parser.add_argument("--radquad",
+                        default=os.path.join(ROOT, "build/release/experiments/radquad"))
     parser.add_argument("--scenes", default=",".join(scene_names()))
     parser.add_argument("--seed", type=int, default=None,
-                        help="default 0 for write, 1 for check (a stream apart from the reference's)")
+                        help="default 0 for write, 1 for check (a stream apart from the "
+                             "reference's)")
     parser.add_argument("--samples", type=int, default=None,
-                        help="paths per patch: default 2^21 for write, 2^14 for check")
-    parser.add_argument("--office-samples", type=int, default=None,
-                        help="paths per patch for the scenes traced with fewer (office): "
-                             "default 2^20 for write, 2^12 for check")
-    parser.add_argument("--furnace-samples", type=int, default=2 ** 12,
-                        help="check: paths per patch for the furnaces (long paths at rho 0.99)")
+                        help="paths per patch for every scene (default: WRITE_SAMPLES or "
+                             "CHECK_SAMPLES, else 2^21 to write and 2^14 to check)")
     args = parser.parse_args()
     args.scenes = args.scenes.split(",")
     unknown = [s for s in args.scenes if s not in scene_names()]
@@ -186,11 +195,7 @@ def main():
         sys.exit(2)
     if args.seed is None:
         args.seed = 0 if args.mode == "write" else 1
-    if args.samples is None:
-        args.samples = 2 ** 21 if args.mode == "write" else 2 ** 14
-    if args.office_samples is None:
-        args.office_samples = 2 ** 20 if args.mode == "write" else 2 ** 12
-    if min(args.samples, args.office_samples, args.furnace_samples) < 2:
+    if args.samples is not None and args.samples < 2:
         print("scene_references: sample counts must be at least 2", file=sys.stderr)
         sys.exit(2)
     (write if args.mode == "write" else check)(args)
