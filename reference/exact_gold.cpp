@@ -17,6 +17,58 @@ namespace {
 
 using namespace exact_gold_detail;
 
+// One run of an outer integration: its values, error estimates, whether it met its
+// tolerance, and the receiver points it took.
+struct OuterRun {
+  std::vector<double> value, error;
+  bool converged = false;
+  std::uint64_t points = 0;
+};
+
+// The inner integrals' share of the tolerance (OuterIntegrand takes them to it) and their
+// rounding, both relative to K's largest entry, added to every outer estimate (exactGold).
+constexpr double kInnerShare = 1e-2;
+constexpr double kRounding = 1e-13;
+
+// An outer run confirmed by a second one: `run(grid, factor, budget)` integrates to `factor`
+// of its tolerance from a grid of grid x grid pieces within `budget` points. Where a kink of
+// the inner integral lies at the same place in many pieces (a penumbra nearly along an axis),
+// a piece's two rules can agree while both are wrong, coherently: on small far sources behind
+// a blocker the actual error of Genz-Malik from 8 x 8 regions stopped falling at about 2e-7
+// of K's largest entry, 200 times its estimate at 1e-9, and runs from 11 x 11 and 13 x 13
+// regions missed by other amounts; the jump lines, whose pieces halve as Genz-Malik's regions
+// do, missed by 1e-10 where they estimated 1e-12. The second run starts from grid + 3 pieces
+// a side, so that no piece of one lines up with a piece of the other but at the square's
+// border. Both go to half the tolerance; they are confirmed when they agree within their
+// summed estimates, and otherwise run once more at a twentieth of it. The first run's value
+// is given, with the error max(its estimate, the runs' difference + the second's estimate):
+// a bound whenever either run's estimate holds.
+template <class Run>
+OuterRun confirmedRun(const Run& run, int grid, std::uint64_t budget, bool& confirmed) {
+  const int second = grid + 3;
+  const std::uint64_t smallest = std::uint64_t(second) * std::uint64_t(second) * kGenzMalikPoints;
+  OuterRun out;
+  confirmed = false;
+  for (const double factor : {0.5, 0.05}) {
+    const std::uint64_t left = budget > out.points ? budget - out.points : 0;
+    if (left < 2 * smallest) break;
+    const OuterRun first = run(grid, factor, left / 2);
+    const OuterRun other = run(second, factor, std::max(smallest, left - first.points));
+    out.points += first.points + other.points;
+    out.value = first.value;
+    out.error.resize(first.value.size());
+    confirmed = first.converged && other.converged;
+    for (std::size_t v = 0; v < first.value.size(); ++v) {
+      const double difference = std::abs(first.value[v] - other.value[v]);
+      confirmed = confirmed && difference <= first.error[v] + other.error[v];
+      out.error[v] = std::max(first.error[v], difference + other.error[v]);
+    }
+    out.converged = confirmed;
+    if (confirmed) break;
+  }
+  return out;
+}
+
 // Whether every receiver point lies strictly in front of the source's plane (the receiver is
 // a parallelogram: its corners decide). Then S', the source clipped by the receiver's plane,
 // is the same polygon from every receiver point and its integral is analytic over the receiver.
@@ -117,7 +169,16 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
       free.reset();
     }
   }
-  const double share = free ? kRestShare : 1.0;
+  // The inner integrals err by up to their accuracy (a hundredth of the tolerance, of a
+  // point's largest moment; source_moments.h; at degree 0 Lambert's formula is exact but for
+  // rounding), smoothly over the receiver: the outer rules' differences do not see that error.
+  // The gold vouches for nothing finer: innerFloor of K's largest entry is added to every
+  // estimate, and the outer rules aim at the rest of the tolerance. (Critical lines that met
+  // the breakpoints alone with estimates of 1e-15 differed by up to 2e-11 from runs by the
+  // other outer methods 1,000 times tighter; tests/reference/gold_honesty_test.cpp.)
+  const double innerFloor = std::max(kRounding, kInnerShare * options.tolerance);
+  const double outerShare = 1.0 - innerFloor / options.tolerance;
+  const double share = (free ? kRestShare : 1.0) * outerShare;
   // Genz-Malik's own estimate (its embedded degree-5 rule) cannot see what no point of a
   // region samples, such as a thin shadow between its points: started from the whole square,
   // a run at the study's 3e-4 stopped early on 1 of 24 of the study's partial links at each
@@ -126,28 +187,43 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
   // from 8 x 8 regions (1,088 points), none failed, the worst actual error 0.16 and 0.33 of
   // the estimate; 4 x 4 and 2 x 2 passed too on those links, and 8 x 8 costs about as many
   // points as they do at 3e-4 (2,300 and 3,500 a link on average, against 1,800 and 3,400).
-  auto genzMalik = [&] {
+  // Below confirmBelow the two methods without the critical segments as breakpoints are
+  // confirmed by a second run (confirmedRun).
+  auto genzMalik = [&](int grid, double factor, std::uint64_t budget) {
     GenzMalikOptions genz;
-    genz.tolerance = share * options.tolerance;
-    genz.initialGrid = options.initialGrid;
-    genz.maxEvaluations = options.maxEvaluations;
+    genz.tolerance = factor * share * options.tolerance;
+    genz.initialGrid = grid;
+    genz.maxEvaluations = budget;
     if (free) genz.baseline = free->value;
-    const GenzMalikResult run = genzMalik2d(
+    const std::uint64_t before = integrand.points;
+    GenzMalikResult run = genzMalik2d(
         values,
         [&](std::size_t count, const double* points, double* out) {
           evaluateBatch(integrand, count, points, out);
         },
         genz);
-    value = run.value;
-    error = run.error;
+    return OuterRun{std::move(run.value), std::move(run.error), run.converged,
+                    integrand.points - before};
+  };
+  const std::vector<ReceiverSegment> contact = contactSegments(link.receiver, candidates);
+  auto jumpLines = [&](int grid, double factor, std::uint64_t budget) {
+    ExactGoldOptions lines = options;
+    lines.tolerance = factor * options.tolerance;
+    lines.maxEvaluations = budget;
+    CriticalLineCubature cubature(integrand, contact, lines, grid);
+    cubature.setBaseline(free ? free->value : std::vector<double>{}, share);
+    OuterRun run;
+    run.converged = cubature.run(run.value, run.error);
+    run.points = cubature.points();
+    return run;
   };
   ExactOuterMethod method = options.outer;
-  const std::vector<ReceiverSegment> contact = contactSegments(link.receiver, candidates);
+  std::uint64_t outerPoints = 0;
   if (method == ExactOuterMethod::criticalLines) {
     std::vector<ReceiverSegment> segments = criticalSegments(link.receiver, link.source, candidates);
     gold.criticalSegments = segments.size();
     CriticalLineCubature cubature(integrand, std::move(segments), options);
-    if (free) cubature.setBaseline(free->value, share);
+    cubature.setBaseline(free ? free->value : std::vector<double>{}, share);
     // Many segments make the breakpoints' product costly (floor ~ segments^2): then the
     // bisection of Genz-Malik, linear in the segments' length, is cheaper.
     // Genz-Malik's points grow as tolerance^(-1/2), the floor not at all: the threshold
@@ -164,7 +240,7 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     }
     if (cubature.floorWithin(threshold)) {
       cubature.run(value, error);
-      integrand.points = cubature.points();
+      outerPoints = cubature.points();
     } else {
       // Too many segments for their breakpoints. Where the inner integral jumps, Genz-Malik's
       // estimate is not to be trusted: a region's 17 points see a jump only as a difference
@@ -174,18 +250,25 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
       method = contact.empty() ? ExactOuterMethod::genzMalik : ExactOuterMethod::jumpLines;
     }
   }
-  if (method == ExactOuterMethod::jumpLines) {
-    CriticalLineCubature cubature(integrand, contact, options, options.initialGrid);
-    if (free) cubature.setBaseline(free->value, share);
-    cubature.run(value, error);
-    integrand.points = cubature.points();
+  if (method != ExactOuterMethod::criticalLines) {
+    const auto run = [&](int grid, double factor, std::uint64_t budget) {
+      return method == ExactOuterMethod::genzMalik ? genzMalik(grid, factor, budget)
+                                                   : jumpLines(grid, factor, budget);
+    };
+    OuterRun result = options.tolerance < options.confirmBelow
+                          ? confirmedRun(run, options.initialGrid, options.maxEvaluations, gold.confirmed)
+                          : run(options.initialGrid, 1.0, options.maxEvaluations);
+    value = std::move(result.value);
+    error = std::move(result.error);
+    outerPoints = result.points;
   }
-  if (method == ExactOuterMethod::genzMalik) genzMalik();
+  integrand.points = outerPoints;
   if (!integrand.finite()) throw ComputationError("exact gold: the inner integral was not finite");
   if (free) {
     // K_free's error must fit the tolerance's remaining share of the whole's largest entry;
     // where the shadows take most of K, it was computed too loosely: higher orders.
-    const double allowed = (1.0 - share) * options.tolerance * largestOfSum(free->value, value);
+    const double allowed =
+        (1.0 - kRestShare) * outerShare * options.tolerance * largestOfSum(free->value, value);
     if (largestAbs(free->error) > allowed &&
         !free->refine(std::numeric_limits<double>::infinity(), 0.5 * allowed)) {
       // The last order reached first: the whole integral at once instead.
@@ -214,10 +297,11 @@ ExactGold exactGold(const Link& link, int degree, const ExactGoldOptions& option
     }
   }
   const double toFormFactor = std::sqrt(link.source.area / link.receiver.area);
+  const double largest = gold.coupling.cwiseAbs().maxCoeff();
+  gold.couplingError.array() += innerFloor * largest;
   gold.formFactor = gold.coupling(0, 0) * toFormFactor;
   gold.formFactorError = gold.couplingError(0, 0) * toFormFactor;
-  const double largest = gold.coupling.cwiseAbs().maxCoeff();
-  gold.converged = gold.couplingError.maxCoeff() <= options.tolerance * largest;
+  gold.converged = gold.confirmed && gold.couplingError.maxCoeff() <= options.tolerance * largest;
   gold.receiverPoints = integrand.points;
   // Every worker culled the same shaft: read the count from one instead of culling again.
   for (const Worker& worker : integrand.workers) {
