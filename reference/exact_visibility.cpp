@@ -1,5 +1,6 @@
 #include "reference/exact_visibility.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -9,6 +10,9 @@ namespace {
 // Points this close to the apex (relative to x's height over the source plane) are cut: a
 // polygon through x itself casts a shadow of zero area.
 constexpr double kApexMargin = 1e-12;
+// A polygon clipped to the shaft with less area than this share of the larger patch's only
+// touches it (occludersInShaft).
+constexpr double kShaftAreaRounding = 1e-12;
 
 }  // namespace
 
@@ -27,6 +31,14 @@ ExactVisibility::ExactVisibility(const Link& link, ShadowUnion method)
   double scale = 0.0;
   for (const auto& c : corners) scale = std::max(scale, c.cwiseAbs().maxCoeff());
   const std::vector<Eigen::Vector4d> planes = convexHullPlanes(corners);
+  // The shaft's interior as half-spaces normal . p + offset >= 0: inside every face of the hull,
+  // in front of both patches (where the kernel is positive).
+  for (const auto& plane : planes) shaftPlanes_.push_back(-plane);
+  for (const Patch* patch : {&link.receiver, &link.source}) {
+    shaftPlanes_.push_back({patch->normal.x(), patch->normal.y(), patch->normal.z(),
+                            -patch->normal.dot(patch->origin)});
+  }
+  shaftArea_ = std::max(link.receiver.area, link.source.area);
   const double tolerance = 1e-9 * scale;
   for (const auto& polygon : link.occluders->polygons()) {
     bool outside = false;
@@ -46,6 +58,36 @@ ExactVisibility::ExactVisibility(const Link& link, ShadowUnion method)
     }
   }
   statistics_.candidateOccluders = candidates_.size();
+}
+
+std::size_t ExactVisibility::occludersInShaft() const {
+  std::size_t count = 0;
+  std::vector<Eigen::Vector3d> clipped, next;
+  for (const auto& polygon : candidates_) {
+    clipped = polygon;
+    for (const auto& plane : shaftPlanes_) {
+      clipConvexPolygon(clipped, plane.head<3>(), plane[3], next);
+      std::swap(clipped, next);
+      if (clipped.size() < 3) break;
+    }
+    if (clipped.size() < 3) continue;
+    // A polygon lying in one of the shaft's faces (a wall along its side) touches it only.
+    const bool inFace = std::any_of(shaftPlanes_.begin(), shaftPlanes_.end(), [&](const Eigen::Vector4d& plane) {
+      const double slack = planeSlack(plane.head<3>(), plane[3], polygonReach(clipped));
+      return std::all_of(clipped.begin(), clipped.end(), [&](const Eigen::Vector3d& p) {
+        return plane.head<3>().dot(p) + plane[3] <= slack;
+      });
+    });
+    if (inFace) continue;
+    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0, n = clipped.size(); i < n; ++i) {
+      twice += clipped[i].cross(clipped[(i + 1) % n]);
+    }
+    // Rounding leaves a sliver of about 1e-16 of the patches' size where a polygon only
+    // touches the shaft (a neighbour in the receiver's plane along its edge).
+    count += 0.5 * twice.norm() > kShaftAreaRounding * shaftArea_;
+  }
+  return count;
 }
 
 void ExactVisibility::visibleRings(const Eigen::Vector3d& x, VisibleRings& out) {

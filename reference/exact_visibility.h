@@ -68,6 +68,13 @@ class ExactVisibility {
   std::size_t candidateCount() const { return candidates_.size(); }
   // The occluder polygons in the link's shaft (the only ones that can block it).
   const std::vector<std::vector<Eigen::Vector3d>>& candidates() const { return candidates_; }
+  // How many of them meet the shaft's interior, where the kernel is positive: clipped to every
+  // face of the hull and to the front of both patches, a polygon keeps an area (more than
+  // 1e-12 of the larger patch's, rounding). The cull above is conservative (a polygon is
+  // dropped only when one face plane has it wholly outside); this is exact. With none, no
+  // segment between the patches is blocked, and the link sees its whole source from every
+  // receiver point.
+  std::size_t occludersInShaft() const;
 
  private:
   // Subtracts the union of the shadows that overlap another (overlaps_) by inclusion-exclusion
@@ -85,6 +92,8 @@ class ExactVisibility {
   Eigen::Vector3d dualU_, dualV_;  // (y - origin) . dualU = u for y in the source's plane
   std::vector<std::vector<Eigen::Vector3d>> candidates_;
   std::vector<double> candidateReach_;  // polygonReach of each candidate
+  std::vector<Eigen::Vector4d> shaftPlanes_;  // the shaft's interior: normal . p + offset >= 0
+  double shaftArea_ = 0.0;  // the larger patch's area
   ExactVisibilityStatistics statistics_;
   // Scratch.
   std::vector<Eigen::Vector3d> clipA_, clipB_, front_;
