@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "experiments/study/study_statistics.h"
@@ -78,6 +79,15 @@ nlohmann::json ratioJson(const PairedRatio& ratio) {
           {"verdict", lessVerdict(ratio)}};
 }
 
+// An influential link's entry with the comparison redone without it.
+nlohmann::json withoutIt(nlohmann::json link, const PairedRatio& rest) {
+  link["ratio_without"] = rest.ratio;
+  link["low95_without"] = rest.low;
+  link["high95_without"] = rest.high;
+  link["verdict_without"] = lessVerdict(rest);
+  return link;
+}
+
 // "a < b" on the same links: the ratio of means with its bootstrap interval, the sign test,
 // and the most influential link with the comparison redone without it.
 nlohmann::json pairedComparison(const std::vector<double>& a, const std::vector<double>& b,
@@ -93,11 +103,7 @@ nlohmann::json pairedComparison(const std::vector<double>& a, const std::vector<
   nlohmann::json link = linkName(perLink, influence.index);
   link["share_of_numerator"] = influence.shareOfNumerator;
   link["share_of_denominator"] = influence.shareOfDenominator;
-  link["ratio_without"] = rest.ratio;
-  link["low95_without"] = rest.low;
-  link["high95_without"] = rest.high;
-  link["verdict_without"] = lessVerdict(rest);
-  out["most_influential_link"] = link;
+  out["most_influential_link"] = withoutIt(std::move(link), rest);
   return out;
 }
 
@@ -113,11 +119,7 @@ nlohmann::json unpairedComparison(const std::vector<double>& a, const std::vecto
   nlohmann::json link = linkName(inB ? bLinks : aLinks, influence.index);
   link["class"] = inB ? bName : aName;
   link["share_of_its_class"] = inB ? influence.shareOfDenominator : influence.shareOfNumerator;
-  link["ratio_without"] = rest.ratio;
-  link["low95_without"] = rest.low;
-  link["high95_without"] = rest.high;
-  link["verdict_without"] = lessVerdict(rest);
-  out["most_influential_link"] = link;
+  out["most_influential_link"] = withoutIt(std::move(link), rest);
   return out;
 }
 

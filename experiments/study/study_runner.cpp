@@ -20,6 +20,8 @@
 #include "quadrature/estimate.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
+#include "reference/exact_visibility.h"
+#include "reference/gold_reference.h"
 
 namespace radquad {
 namespace {
@@ -58,7 +60,7 @@ CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& sc
                                     std::size_t classIndex, StudyClass linkClass,
                                     std::uint64_t index) {
   if (scorers.pool != nullptr) {
-    const SceneLinkEntry entry = scorers.pool->entry(linkClass, std::size_t(index));
+    const SceneLinkEntry entry = scorers.pool->entry(std::size_t(index));
     return {scorers.pool->geometry(entry).build(), orientationOf(entry.receiver, entry.source),
             OccluderKind::scene, scorers.pool->sceneNames().at(std::size_t(entry.scene))};
   }
@@ -71,6 +73,7 @@ struct Candidate {
   bool accepted = false;
   bool mostlyBlocked = false;
   bool occluderCrossesPatch = false;
+  const char* ownClass = nullptr;  // scene-derived: sceneLinkClass
   std::uint64_t rays = 0;
   LinkIntegral draw;  // the reference's reported draw, kept for the scoring pass
   LinkRecord record;
@@ -79,6 +82,20 @@ struct Candidate {
 void addInto(std::vector<double>& sum, const std::vector<double>& values, double scale) {
   sum.resize(values.size(), 0.0);
   for (std::size_t k = 0; k < values.size(); ++k) sum[k] += scale * values[k];
+}
+
+// sceneLinkClass in two steps: by geometry alone ("singular", "unoccluded", or null when an
+// occluder meets the shaft), then an occluded link by its visible fraction.
+const char* geometricClass(const Link& link) {
+  if (singularLink(link)) return "singular";
+  if (ExactVisibility(link).occludersInShaft() == 0) return "unoccluded";
+  return nullptr;
+}
+
+const char* occludedClass(double visibleFraction, const StudyConfig& config) {
+  if (visibleFraction <= config.minVisibleFraction) return "mostly_blocked";
+  if (visibleFraction >= config.maxVisibleFraction) return "mostly_visible";
+  return "partial";
 }
 
 // First pass over a candidate: its geometry and the reference's reported draw, whose rays
@@ -104,6 +121,15 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
       }
     }
   }
+  // Scene-derived: singular and unoccluded links are known from their geometry; a candidate of
+  // another class is counted without drawing its rays.
+  const char* geometric = scorers.pool != nullptr ? geometricClass(link) : nullptr;
+  if (geometric != nullptr && std::string(geometric) != studyClassName(linkClass)) {
+    out.record.candidate = index;
+    out.ownClass = geometric;
+    out.accepted = false;
+    return;
+  }
   scorers.reference.draw(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
                          out.draw);
   out.rays = out.draw.raysCast;
@@ -115,7 +141,10 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.distanceFactor = distanceFactorOf(link.receiver, link.source);
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;
-  if (linkClass == StudyClass::partial && scorers.pool == nullptr) {
+  if (scorers.pool != nullptr) {
+    out.ownClass = geometric != nullptr ? geometric : occludedClass(record.visibleFraction, config);
+    out.accepted = std::string(out.ownClass) == studyClassName(linkClass);
+  } else if (linkClass == StudyClass::partial) {
     out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
     out.accepted = !out.mostlyBlocked && record.visibleFraction < config.maxVisibleFraction;
   }
@@ -206,18 +235,21 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                   std::size_t classIndex, StudyClass linkClass, int wanted) {
   ClassRun run;
   run.linkClass = linkClass;
+  std::uint64_t limit = std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
   if (scorers.pool != nullptr) {
-    // Scene-derived: every link qualifies; a class holds at most the scene's links.
-    run.available = scorers.pool->size(linkClass);
-    wanted = int(std::min<std::size_t>(std::size_t(wanted), run.available));
+    // Scene-derived: the pool's links of the class, in sampling order; a class whose links the
+    // pool runs out of holds all of them.
+    run.available = scorers.pool->size();
+    if (run.available <= limit) {
+      limit = run.available;
+      wanted = int(std::min<std::size_t>(std::size_t(wanted), run.available));
+    }
   }
   run.wanted = wanted;
-  const std::uint64_t limit = scorers.pool != nullptr
-                                  ? std::uint64_t(wanted)
-                                  : std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
   tbb::enumerable_thread_specific<CouplingAccumulator> accumulators;
   std::vector<Candidate> candidates;
   while (run.links.size() < std::size_t(wanted)) {
+    if (run.generated >= limit && scorers.pool != nullptr && limit == run.available) break;
     if (run.generated >= limit) {
       throw InputError(std::string("class '") + studyClassName(linkClass) + "': only " +
                        std::to_string(run.links.size()) + " of " + std::to_string(wanted) +
@@ -249,8 +281,11 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
       const Candidate& candidate = candidates[k];
       ++run.generated;
       run.referenceRays += candidate.rays;
+      if (candidate.ownClass != nullptr) ++run.candidatesByOwnClass[candidate.ownClass];
       if (candidate.accepted) {
         kept.push_back(k);
+      } else if (candidate.ownClass != nullptr) {
+        // Scene-derived: another class's link, counted by its own class above.
       } else if (candidate.occluderCrossesPatch) {
         ++run.rejectedOccluderCrossesPatch;
       } else if (candidate.mostlyBlocked) {
@@ -278,6 +313,11 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
 
 }  // namespace
 
+const char* sceneLinkClass(const Link& link, double visibleFraction, const StudyConfig& config) {
+  const char* geometric = geometricClass(link);
+  return geometric != nullptr ? geometric : occludedClass(visibleFraction, config);
+}
+
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
   const int degree = config.degree();
   Scorers scorers{{}, {}, ReferenceEstimator(config.reference, degree), options.gold};
@@ -299,6 +339,8 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
     scorers.pool = pool.get();
     run.sceneLinks = pool->totalLinks();
     run.sceneOccludedLinks = pool->occludedLinks();
+    run.sceneSolverUnoccluded = pool->solverUnoccludedLinks();
+    run.sceneSolverPartial = pool->solverPartialLinks();
   }
   run.referenceName = scorers.reference.name();
   run.referenceSamples = scorers.reference.samples();

@@ -86,7 +86,10 @@ nlohmann::json candidateCounts(const ClassRun& run) {
                             {"reference_rays", run.referenceRays},
                             {"accepted_by_occluder", byOccluder},
                             {"accepted_by_orientation", byOrientation}};
-  if (run.available > 0) counts["scene_links_of_class"] = run.available;
+  if (run.available > 0) {
+    counts["scene_links_in_pool"] = run.available;
+    counts["by_own_class"] = run.candidatesByOwnClass;
+  }
   return counts;
 }
 
@@ -276,7 +279,9 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
   };
   if (config.sceneLinks) {
     table["scene_links"] = {{"final_active", run.sceneLinks},
-                            {"occluded_not_scored", run.sceneOccludedLinks}};
+                            {"occluded_not_scored", run.sceneOccludedLinks},
+                            {"solver_unoccluded", run.sceneSolverUnoccluded},
+                            {"solver_partial", run.sceneSolverPartial}};
   }
   if (options.gold) {
     std::map<std::string, int> methods, outerMethods;
