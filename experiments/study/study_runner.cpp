@@ -73,6 +73,7 @@ struct Candidate {
   bool accepted = false;
   bool mostlyBlocked = false;
   bool occluderCrossesPatch = false;
+  bool goldRefused = false;  // scene-derived: its gold did not converge (scoreLink)
   const char* ownClass = nullptr;  // scene-derived: sceneLinkClass
   std::uint64_t rays = 0;
   LinkIntegral draw;  // the reference's reported draw, kept for the scoring pass
@@ -175,6 +176,13 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
     record.goldMaxRelativeError = gold.couplingError.maxCoeff() / G.cwiseAbs().maxCoeff();
     record.goldConverged = gold.converged;
+    // A scene link whose gold cannot vouch for its error is refused, and the class takes the
+    // next candidate of its own class instead (runClass); its rules are not scored. A
+    // generated link keeps its unconverged gold: the table counts it and the run fails.
+    if (!gold.converged && scorers.pool != nullptr) {
+      candidate.goldRefused = true;
+      return;
+    }
     for (const double b : l1ErrorBound(gold.couplingError, area)) record.goldL1BoundTotal += b;
     record.goldFrobeniusError = gold.couplingError.norm() / G.norm();
     record.referenceRelativeErrorVsGold = relativeError(K, G);
@@ -302,7 +310,15 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                                     candidates[kept[k]]);
                         }
                       });
-    for (const std::size_t k : kept) run.links.push_back(std::move(candidates[k].record));
+    // Refused links leave their places to the next candidates of the class: the suite is the
+    // first N qualifying candidates whose gold converged, whatever the batch sizes.
+    for (const std::size_t k : kept) {
+      if (candidates[k].goldRefused) {
+        run.refusedGoldCandidates.push_back(candidates[k].record.candidate);
+      } else {
+        run.links.push_back(std::move(candidates[k].record));
+      }
+    }
     if (options.progress) {
       std::cerr << "radquad study: " << studyClassName(linkClass) << " links " << run.links.size()
                 << "/" << wanted << " (" << run.generated << " candidates)\n";

@@ -98,6 +98,9 @@ struct ClassRun {
   std::size_t available = 0;                // scene-derived: the links in the pool
   // Scene-derived: the candidates drawn, by their own class (sceneLinkClass).
   std::map<std::string, std::uint64_t> candidatesByOwnClass;
+  // Scene-derived, with gold: the candidates of the class refused because their gold did not
+  // converge (each replaced by the next candidate of the class), in candidate order.
+  std::vector<std::uint64_t> refusedGoldCandidates;
 };
 
 struct RuleInfo {

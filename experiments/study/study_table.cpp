@@ -89,6 +89,8 @@ nlohmann::json candidateCounts(const ClassRun& run) {
   if (run.available > 0) {
     counts["scene_links_in_pool"] = run.available;
     counts["by_own_class"] = run.candidatesByOwnClass;
+    counts["refused_unconverged_gold"] = run.refusedGoldCandidates.size();
+    counts["refused_gold_candidates"] = run.refusedGoldCandidates;
   }
   return counts;
 }

@@ -241,7 +241,7 @@ TEST(SceneLinks, ASuiteOfASolvesLinksIsTheSameWhateverTheThreadCount) {
       for (const auto& [name, count] : classRun.candidatesByOwnClass) counted += count;
       EXPECT_EQ(counted, classRun.generated);
       EXPECT_EQ(classRun.candidatesByOwnClass.at(studyClassName(classRun.linkClass)),
-                classRun.links.size());
+                classRun.links.size() + classRun.refusedGoldCandidates.size());
       for (const LinkRecord& link : classRun.links) {
         EXPECT_EQ(link.occluderKind, OccluderKind::scene);
         // A link is unoccluded when no occluder meets its shaft (exact, by clipping): the
