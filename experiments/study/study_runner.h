@@ -16,7 +16,9 @@
 // t of a random rule deriveSeed(seed, {c, k, 3, t}) (a rule of listed draws: its draw t, on
 // every link). Candidates are scored in parallel
 // (oneTBB) and stored by index; the first N qualifying candidates in index order form the
-// suite, so the output does not depend on the thread count.
+// suite, so the output does not depend on the thread count. A scene-derived link whose gold
+// does not converge is refused (ClassRun::refusedGoldCandidates) and the next qualifying
+// candidate takes its place; a generated one keeps its unconverged gold (the run fails).
 #pragma once
 
 #include <Eigen/Core>
