@@ -182,7 +182,7 @@ std::vector<std::vector<std::array<double, 2>>> overlappingQuads(int count) {
 
 void unionClipper(benchmark::State& state) {
   const auto quads = overlappingQuads(int(state.range(0)));
-  constexpr double kScale = 17592186044416.0;  // 2^44, as in reference/exact_visibility.cpp
+  constexpr double kScale = 17592186044416.0;  // 2^44, as in reference/shadow_union.cpp
   double area = 0.0;
   for (auto _ : state) {
     ClipperLib::Paths paths(quads.size());
@@ -226,7 +226,7 @@ void unionBoostGeometry(benchmark::State& state) {
   state.counters["area"] = area;
 }
 
-// The outline of the union (what the exact gold takes; reference/exact_visibility.h), on the
+// The outline of the union (what the exact gold takes; reference/union_outline.h), on the
 // same quadrilaterals: its pieces, and their area by the shoelace sum over them.
 void unionOutline(benchmark::State& state) {
   const auto quads = overlappingQuads(int(state.range(0)));

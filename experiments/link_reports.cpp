@@ -70,6 +70,7 @@ nlohmann::json goldToJson(const GoldReference& gold, const GoldOptions& options)
     out["outer_method"] = gold.outerMethod;
     out["critical_segments"] = gold.criticalSegments;
     out["unoccluded_apart"] = gold.unoccludedApart;
+    out["confirmed"] = gold.confirmed;
   }
   if (gold.lambert) {
     const LambertCheck& check = *gold.lambert;

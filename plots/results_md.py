@@ -38,6 +38,17 @@ def ratio_text(ratio):
     return f"{ratio[0]:.2f} ({ratio[1]:.2f} to {ratio[2]:.2f})"
 
 
+def wins_text(ratio):
+    """The sign test of a paired ratio: links where the rule is below / above FullGauss, p."""
+    if not isinstance(ratio, dict) or "links_below" not in ratio:
+        return "-"
+    return f"{ratio['links_below']}/{ratio['links_above']} (p {ratio['sign_test_p']:.2g})"
+
+
+def share(value):
+    return "-" if value is None else f"{100 * value:.0f}%"
+
+
 def table(header, rows):
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
@@ -63,15 +74,19 @@ def figure1(name, data):
     suffix = gold_suffix(rules)
     against = "the gold" if suffix else "the paper's reference"
     out.append(f"{data['links']} partial links ({source}), constant bases; relative error of "
-               f"K[0][0] against {against}; ratio: the rule's mean over FullGauss's on the same "
-               f"links, with its 95% interval.\n")
+               f"K[0][0] against {against}; largest link: its share of the rule's mean; ratio: the "
+               f"rule's mean over FullGauss's on the same links, with its 95% bootstrap interval "
+               f"over links; below/above: links where the rule errs less/more than FullGauss, "
+               f"with the sign test's p-value.\n")
     rows = []
     for rule in rules:
         stats = rule["relative_error" + suffix]
         ratio = rule.get("ratio_to_fullgauss", {}).get("relative_error" + suffix)
         rows.append([rule["name"], rule["samples"], g(stats["mean"]), g(stats["sem"], 2), g(stats["median"]),
-                     g(stats["p90"]), g(stats["max"]), ratio_text(ratio)])
-    out.append(table(["rule", "samples", "mean", "sem", "median", "p90", "max", "ratio to FullGauss"], rows))
+                     g(stats["p90"]), g(stats["max"]), share(stats.get("largest_share")), ratio_text(ratio),
+                     wins_text(ratio)])
+    out.append(table(["rule", "samples", "mean", "sem", "median", "p90", "max", "largest link",
+                      "ratio to FullGauss", "below/above"], rows))
     reference = data["reference"]["relative_standard_error"]
     if reference.get("mean") is not None:
         out.append(f"\nThe reference's own relative standard error: mean {g(reference['mean'], 2)}, "
@@ -110,20 +125,26 @@ def figure2(name, data):
         against = "the gold" if suffix else "the paper's reference"
         out.append(f"### {class_name}: {part['links']} links ({source}), quadratic bases, against {against}\n")
         out.append("U_tot: the sum over the 9 source functions of the L1 error bound per unit area "
-                   "(the report's Figure 2); Frobenius: the relative Frobenius error of K "
-                   "(scale-free); ratios: the rule's mean over FullGauss's on the same links.\n")
+                   "(the report's Figure 2); largest link: its share of the rule's mean U_tot; "
+                   "Frobenius: the relative Frobenius error of K (scale-free); ratios: the rule's "
+                   "mean over FullGauss's on the same links, with their 95% bootstrap intervals "
+                   "over links; below/above: links where the rule's U_tot is below/above "
+                   "FullGauss's, with the sign test's p-value.\n")
         rows = []
         for rule in rules:
             bound = rule["l1_error_bound" + suffix]
             frobenius = rule.get("relative_frobenius_error" + suffix, {})
             ratios = rule.get("ratio_to_fullgauss", {})
+            bound_ratio = ratios.get("l1_error_bound_total" + suffix)
             rows.append([rule["name"], g(bound["total"]), g(bound.get("total_median")), g(bound.get("total_p90")),
-                         g(bound.get("total_max")), g(bound["per_source_function"][0]),
-                         ratio_text(ratios.get("l1_error_bound_total" + suffix)),
+                         g(bound.get("total_max")), share(bound.get("total_largest_share")),
+                         g(bound["per_source_function"][0]), ratio_text(bound_ratio), wins_text(bound_ratio),
                          g(frobenius.get("mean")), g(frobenius.get("median")),
+                         share(frobenius.get("largest_share")),
                          ratio_text(ratios.get("relative_frobenius_error" + suffix))])
-        out.append(table(["rule", "U_tot mean", "median", "p90", "max", "M(0,0) mean", "U_tot ratio",
-                          "Frobenius mean", "median", "Frobenius ratio"], rows))
+        out.append(table(["rule", "U_tot mean", "median", "p90", "max", "largest link", "M(0,0) mean",
+                          "U_tot ratio", "below/above", "Frobenius mean", "median", "largest link",
+                          "Frobenius ratio"], rows))
         floor = part["reference"].get("l1_standard_error")
         if floor:
             out.append(f"\nThe reference's own L1 standard error (total): {g(floor['total'], 2)}.\n")
@@ -131,23 +152,45 @@ def figure2(name, data):
     return "\n".join(out)
 
 
+def influence_text(name, comparison):
+    """A comparison's ratio, and its most influential link: share and ratio without it."""
+    link = comparison.get("most_influential_link")
+    if link is None:  # claims written before the influence was recorded
+        return f"{name} {ratio_text(comparison)}"
+    shares = (f"{share(link['share_of_numerator'])}/{share(link['share_of_denominator'])}"
+              if "share_of_numerator" in link else f"{share(link['share_of_its_class'])} of {link['class']}")
+    return (f"{name} {ratio_text(comparison)}, link {link.get('candidate', link['link'])} "
+            f"({shares}): {ratio_text([link['ratio_without'], link['low95_without'], link['high95_without']])}")
+
+
 def claims(data):
     out = ["## The report's claims on the scene-derived suites (results/claims.json)\n",
-           f"Scored against {data['scored_against']}; verdicts as experiments/study/claims.h defines them.\n"]
+           f"Scored against {data['scored_against']}; verdicts as experiments/study/claims.h defines them, "
+           f"from {data.get('interval', 'the 95% intervals')}. Each ratio is followed by its most "
+           f"influential link (the candidate whose removal moves the ratio most; its share of the "
+           f"two sums, or of its class's) and the ratio without it. Fragile: the verdict changes "
+           f"when each comparison loses its most influential link.\n"]
     rows = []
+
+    def verdict(claim, prefix=""):
+        text = claim[prefix + "verdict"]
+        if claim.get(prefix + "fragile"):
+            text += f" (fragile: {claim[prefix + 'verdict_without_most_influential_links']} without)"
+        return text
+
     first = data["fig1_stratified_best"]
-    rows.append(["Figure 1: Stratified best", first["verdict"],
-                 "; ".join(f"{k} {ratio_text(v)}" for k, v in first["against"].items())])
+    rows.append(["Figure 1: Stratified best", verdict(first),
+                 "; ".join(influence_text(k, v) for k, v in first["against"].items())])
     second = data["fig2_gauss_best"]
-    rows.append(["Figure 2: FullGauss better than every Monte Carlo rule", second["verdict"],
-                 "; ".join(f"{c}: " + ", ".join(f"{k} {ratio_text(v)}" for k, v in part["against"].items())
+    rows.append(["Figure 2: FullGauss better than every Monte Carlo rule", verdict(second),
+                 "; ".join(f"{c}: " + ", ".join(influence_text(k, v) for k, v in part["against"].items())
                            for c, part in second["classes"].items())])
     third = data["fig2_partial_more_error"]
-    rows.append(["Figure 2: partial links carry more error (U_tot)", third["verdict"],
-                 "; ".join(f"{k} {ratio_text(v['l1_error_bound_total'])}" for k, v in third["rules"].items())])
-    rows.append(["... in the scale-free Frobenius error", third["scale_free"]["verdict"],
-                 "; ".join(f"{k} {ratio_text(v['relative_frobenius_error'])}" for k, v in third["rules"].items())])
-    out.append(table(["claim", "verdict", "ratios (95% interval)"], rows))
+    rows.append(["Figure 2: partial links carry more error (U_tot)", verdict(third),
+                 "; ".join(influence_text(k, v["l1_error_bound_total"]) for k, v in third["rules"].items())])
+    rows.append(["... in the scale-free Frobenius error", verdict(third["scale_free"]),
+                 "; ".join(influence_text(k, v["relative_frobenius_error"]) for k, v in third["rules"].items())])
+    out.append(table(["claim", "verdict", "ratios (95% interval), most influential link, ratio without it"], rows))
     return "\n".join(out)
 
 

@@ -1,5 +1,5 @@
 // The pieces of a 1D adaptive Gauss-Kronrod integration of a vector of functions (the exact
-// gold's outer integral, exact_gold.cpp): a piece's Kronrod value and its error estimate,
+// gold's outer integral, critical_line_cubature.h): a piece's Kronrod value and its error estimate,
 // the pieces between breakpoints, the halving of the worst pieces, and their sum.
 #pragma once
 

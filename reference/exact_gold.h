@@ -58,6 +58,9 @@ struct ExactGoldOptions {
   // part of the square is judged from fewer points, so a shadow thinner than the space
   // between a large region's points is not missed (exact_gold.cpp says how 8 was chosen).
   int initialGrid = 8;
+  // Below this tolerance a Genz-Malik run is confirmed by a second one (exact_gold.cpp): its
+  // estimate alone was measured to miss coherent errors at tight tolerances.
+  double confirmBelow = 1e-4;
   ExactOuterMethod outer = ExactOuterMethod::criticalLines;
   // Critical lines: the share of the tolerance left to the inner (t) integrals, and the
   // receiver points one line may take.
@@ -90,6 +93,9 @@ struct ExactGold {
   double formFactor = 0.0;
   double formFactorError = 0.0;
   bool converged = false;
+  // Genz-Malik below confirmBelow: its two runs agreed within their summed estimates (true
+  // where no confirmation is asked for). A gold that is not confirmed is not converged.
+  bool confirmed = true;
   std::uint64_t receiverPoints = 0;   // outer evaluations: receiver points computed
   std::uint64_t polygonUnions = 0;    // receiver points whose shadows overlapped
   std::size_t candidateOccluders = 0;  // occluder polygons in the link's shaft

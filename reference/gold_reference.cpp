@@ -26,8 +26,8 @@ double maxAbs(const Eigen::MatrixXd& matrix) {
   return matrix.cwiseAbs().maxCoeff();
 }
 
-// The Gauss sequence; returns false if a ray was blocked (the link is occluded).
-bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& gold) {
+// The Gauss sequence of a link without occluders (no rays are cast).
+void gaussGold(const Link& link, int degree, double tolerance, GoldReference& gold) {
   LinkIntegral previous;
   // One accumulator per thread for every link's sequence: its buffers grow to the largest
   // order once (48^4 kernel values) instead of being allocated, faulted in and zeroed again
@@ -40,7 +40,6 @@ bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& go
     LinkIntegral current;
     prepared.integrate(link, 0, accumulator, current);
     gold.kernelEvaluations += current.kernelEvaluations;
-    if (current.raysBlocked > 0) return false;
     if (havePrevious) {
       gold.coupling = current.coupling;
       gold.formFactor = current.formFactor;
@@ -48,22 +47,11 @@ bool gaussGold(const Link& link, int degree, double tolerance, GoldReference& go
       gold.formFactorError = std::fabs(current.formFactor - previous.formFactor);
       gold.gaussPoints = n;
       gold.converged = maxAbs(gold.couplingError) <= tolerance * maxAbs(current.coupling);
-      if (gold.converged) return true;
+      if (gold.converged) return;
     }
     previous = current;
     havePrevious = true;
   }
-  return true;
-}
-
-// The kernel of a link is not smooth over it, occluders aside, when the patches touch (a
-// wall on a floor: singular along the contact) or one crosses the other's plane (the
-// clamped cosine is discontinuous there).
-bool kernelNotSmooth(const Link& link) {
-  const double size = std::max({link.receiver.edgeU.norm(), link.receiver.edgeV.norm(),
-                                link.source.edgeU.norm(), link.source.edgeV.norm()});
-  return patchDistance(link.receiver, link.source) <= 1e-9 * size ||
-         cutByTangentPlane(link.receiver, link.source);
 }
 
 Eigen::VectorXd lambertColumnAtOrder(const Link& link, int degree, int n) {
@@ -87,14 +75,27 @@ Eigen::VectorXd lambertColumnAtOrder(const Link& link, int degree, int n) {
 
 }  // namespace
 
+bool singularLink(const Link& link) {
+  const double size = std::max({link.receiver.edgeU.norm(), link.receiver.edgeV.norm(),
+                                link.source.edgeU.norm(), link.source.edgeV.norm()});
+  return patchDistance(link.receiver, link.source) <= 1e-9 * size ||
+         cutByTangentPlane(link.receiver, link.source);
+}
+
 const char* goldMethodName(GoldMethod method) {
-  return method == GoldMethod::exact ? "exact" : "stratified";
+  switch (method) {
+    case GoldMethod::automatic: return "auto";
+    case GoldMethod::exact: return "exact";
+    case GoldMethod::stratified: return "stratified";
+  }
+  return "?";
 }
 
 GoldMethod parseGoldMethod(const std::string& name, const std::string& what) {
+  if (name == "auto") return GoldMethod::automatic;
   if (name == "exact") return GoldMethod::exact;
   if (name == "stratified") return GoldMethod::stratified;
-  throw InputError(what + ": unknown gold method '" + name + "' (exact or stratified)");
+  throw InputError(what + ": unknown gold method '" + name + "' (auto, exact or stratified)");
 }
 
 LambertCheck lambertColumn(const Link& link, int degree, double tolerance) {
@@ -118,30 +119,38 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
                             const GoldOptions& options) {
   validateBasisDegree(degree);
   GoldReference gold;
-  // Where the kernel is not smooth over the link even without occluders, the Gauss sequence
-  // converges algebraically: up to 48^4 points it does not reach the tolerance, and about 8
-  // million evaluations, each with its occlusion ray, come before the exact gold that such a
-  // link gets anyway. Those links go there at once.
-  const auto exactFits = [&] {
-    return ExactVisibility(link).candidateCount() <= options.maxExactOccluders;
-  };
-  const bool exactMethod = options.method == GoldMethod::exact;
-  const bool direct = exactMethod && kernelNotSmooth(link) && exactFits();
-  const bool unoccluded = !direct && gaussGold(link, degree, options.tolerance, gold);
-  if (unoccluded && gold.converged) {
-    gold.method = "gauss product";
-    LambertCheck check = lambertColumn(link, degree, options.tolerance);
-    check.maxDifference = (check.column - gold.coupling.col(0)).cwiseAbs().maxCoeff();
-    gold.lambert = std::move(check);
-    return gold;
+  // Which gold a link takes is decided by its geometry, never by sample rays: a ray that
+  // misses a thin shadow would take the link for unoccluded and give it an error of 0.
+  const ExactVisibility visibility(link);
+  const bool shadowed = visibility.occludersInShaft() > 0;
+  GoldMethod method = options.method;
+  if (method == GoldMethod::automatic) {
+    // No occluder meets the shaft and the kernel is smooth over the link: the Gauss sequence,
+    // its visibility 1 everywhere, with no rays. Where the kernel is not smooth even without
+    // occluders (touching patches, one crossing the other's plane), the sequence converges
+    // algebraically: up to 48^4 points it does not reach the tolerance, so such links, and
+    // shadowed ones, take the exact gold, or the dense gold where their shafts hold more than
+    // maxExactOccluders polygons.
+    if (!shadowed && !singularLink(link)) {
+      gaussGold(Link{link.receiver, link.source, nullptr}, degree, options.tolerance, gold);
+      if (gold.converged) {
+        gold.method = "gauss product";
+        LambertCheck check = lambertColumn(link, degree, options.tolerance);
+        check.maxDifference = (check.column - gold.coupling.col(0)).cwiseAbs().maxCoeff();
+        gold.lambert = std::move(check);
+        return gold;
+      }
+    }
+    method = visibility.candidateCount() <= options.maxExactOccluders ? GoldMethod::exact
+                                                                      : GoldMethod::stratified;
   }
-  if (direct || (exactMethod && exactFits())) {
+  const std::uint64_t gaussEvaluations = gold.kernelEvaluations;
+  if (method == GoldMethod::exact) {
     ExactGoldOptions exactOptions;
     exactOptions.tolerance = options.exactTolerance;
     exactOptions.maxEvaluations = options.maxEvaluations;
     exactOptions.progress = options.progress;
     const ExactGold exact = exactGold(link, degree, exactOptions);
-    const std::uint64_t gaussEvaluations = gold.kernelEvaluations;
     gold = GoldReference{};
     gold.kernelEvaluations = gaussEvaluations;
     gold.method = "exact visibility";
@@ -150,6 +159,7 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
     gold.formFactor = exact.formFactor;
     gold.formFactorError = exact.formFactorError;
     gold.converged = exact.converged;
+    gold.confirmed = exact.confirmed;
     gold.receiverPoints = exact.receiverPoints;
     gold.shaftOccluders = exact.candidateOccluders;
     gold.outerMethod = exactOuterMethodName(exact.outer);
@@ -157,11 +167,6 @@ GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
     gold.unoccludedApart = exact.unoccludedApart;
     return gold;
   }
-  if (unoccluded) {
-    gold.method = "gauss product";  // not converged: reported as such
-    return gold;
-  }
-  const std::uint64_t gaussEvaluations = gold.kernelEvaluations;
   gold = GoldReference{};
   gold.method = "dense stratified";
   const ReplicateMean mean = stratifiedReplicateMean(link, degree, seed, options.denseStrata,

@@ -1,31 +1,36 @@
 // Gold references: much more accurate than the paper's reference, to measure how far the
 // paper's 10,000-sample reference itself, and every rule, is off (docs/design.md, "The gold").
 //
-// - Unoccluded links (no occluders, or none of the Gauss rays blocked): the Gauss-Legendre
-//   product with n points on every axis for n = 4, 8, 12, 16, 24, 32, 48, until two successive
-//   orders agree to `tolerance` times the largest |K| entry; the error reported is the
-//   entrywise difference of the last two orders (a bound on the coarser one, so
-//   conservative for the finer one returned).
-// - Occluded links, and unoccluded ones whose Gauss sequence does not converge (touching
-//   patches, a source crossing the receiver's plane), with method = exact (the default): the
-//   exact-visibility gold (exact_gold.h), deterministic, to `exactTolerance` of the largest
-//   |K| entry, when the link's shaft holds at most `maxExactOccluders` occluder polygons;
-//   otherwise, or with method = stratified, the mean of `denseReplicates` independent draws
-//   of Stratified:k with k = `denseStrata` (default 16 x 24^4 = 5.3 million samples) with the
+// Which gold a link takes (GoldOptions::method):
+// - auto (the default), decided by the link's geometry, never by sample rays:
+//   - no occluder meets the link's shaft (ExactVisibility::occludersInShaft) and the kernel
+//     is smooth over it: the Gauss-Legendre product with n points on every axis for n = 4, 8,
+//     12, 16, 24, 32, 48, until two successive orders agree to `tolerance` times the largest
+//     |K| entry; the error reported is the entrywise difference of the last two orders (a
+//     bound on the coarser one, so conservative for the finer one returned). No rays are
+//     cast: no segment between the patches is blocked;
+//   - an occluder meets the shaft, or the kernel is not smooth (touching patches, a source
+//     crossing the receiver's plane), or the Gauss sequence does not converge: the
+//     exact-visibility gold (exact_gold.h), deterministic, to `exactTolerance` of the largest
+//     |K| entry, when the link's shaft holds at most `maxExactOccluders` occluder polygons;
+//     otherwise the dense stratified gold (below);
+// - exact: the exact-visibility gold on every link, whatever its occluders;
+// - stratified: on every link the mean of `denseReplicates` independent draws of
+//   Stratified:k with k = `denseStrata` (default 16 x 24^4 = 5.3 million samples) with the
 //   standard error of that mean.
-// - Constant source functions on unoccluded links: an independent check of column b = 0,
-//   K[a][0] = sqrt(A_r/A_s) int_{[0,1]^2} phi_a(s,t) F(x(s,t) -> source) ds dt, with the
-//   inner integral by Lambert's contour formula (point_polygon_form_factor.h) and the outer
-//   one by Gauss products of rising order.
+// - Constant source functions on links taking the Gauss gold: an independent check of column
+//   b = 0, K[a][0] = sqrt(A_r/A_s) int_{[0,1]^2} phi_a(s,t) F(x(s,t) -> source) ds dt, with
+//   the inner integral by Lambert's contour formula (point_polygon_form_factor.h) and the
+//   outer one by Gauss products of rising order.
 //
 // Options (GoldOptions):
 // | field             | default | meaning                                                  |
 // |-------------------|---------|----------------------------------------------------------|
-// | method            | exact   | occluded links: exact visibility or dense stratified     |
+// | method            | auto    | auto (by geometry), exact or stratified on every link    |
 // | tolerance         | 1e-9    | agreement of two Gauss orders, relative to max |K|       |
 // | exactTolerance    | 1e-7    | estimated error of the exact gold, relative to max |K|   |
 // | maxEvaluations    | 2000000 | receiver points of the exact gold (then not converged)   |
-// | maxExactOccluders | 64      | more occluder polygons in the shaft: dense stratified    |
+// | maxExactOccluders | 64      | auto: more occluder polygons in the shaft, dense gold    |
 // | denseStrata       | 24      | k of the dense Stratified:k                              |
 // | denseReplicates   | 16      | independent dense draws averaged                         |
 #pragma once
@@ -41,14 +46,14 @@
 
 namespace radquad {
 
-enum class GoldMethod { exact, stratified };
+enum class GoldMethod { automatic, exact, stratified };
 
 const char* goldMethodName(GoldMethod method);
-// "exact" or "stratified"; throws InputError naming `what` otherwise.
+// "auto", "exact" or "stratified"; throws InputError naming `what` otherwise.
 GoldMethod parseGoldMethod(const std::string& name, const std::string& what);
 
 struct GoldOptions {
-  GoldMethod method = GoldMethod::exact;
+  GoldMethod method = GoldMethod::automatic;
   double tolerance = 1e-9;
   double exactTolerance = 1e-7;
   std::size_t maxEvaluations = 2000000;
@@ -75,9 +80,10 @@ struct GoldReference {
   // dense stratified: the standard error of the mean.
   Eigen::MatrixXd couplingError;
   double formFactorError = 0.0;
-  // Gauss orders agreed, or the exact gold met its tolerance (always true for dense
-  // stratified, whose error is statistical).
+  // Gauss orders agreed, or the exact gold met its tolerance with its estimate confirmed
+  // (always true for dense stratified, whose error is statistical).
   bool converged = false;
+  bool confirmed = true;  // exact visibility: ExactGold::confirmed
   int gaussPoints = 0;  // per axis, Gauss only
   // Kernel evaluations spent: the Gauss sequence's (also when the link then went to another
   // method) and the dense draws'; the exact gold's inner integrals are not evaluations.
@@ -93,6 +99,12 @@ struct GoldReference {
 
 GoldReference goldReference(const Link& link, int degree, std::uint64_t seed,
                             const GoldOptions& options = {});
+
+// Whether the kernel is not smooth over the link, occluders aside: its patches touch (a wall
+// on a floor: singular along the contact) or one crosses the other's plane (the clamped cosine
+// is discontinuous there). Product rules do not resolve such links (the solver integrates them
+// with composite rules); the study scores them as a class of their own.
+bool singularLink(const Link& link);
 
 // The Lambert check alone (unoccluded links; ignores occluders).
 LambertCheck lambertColumn(const Link& link, int degree, double tolerance);

@@ -96,12 +96,15 @@ void runFigures(const FiguresOptions& options) {
     const nlohmann::json claims = reportClaims(tables[0], tables[1], options.gold);  // -scene
     writeFileAtomically(results / "claims.json", claims.dump(2) + "\n");
     if (!options.quiet) {
-      std::cerr << "radquad figures: the report's claims on the scene-derived suites: "
-                << "fig1_stratified_best "
-                << claims["fig1_stratified_best"]["verdict"].get<std::string>()
-                << ", fig2_gauss_best " << claims["fig2_gauss_best"]["verdict"].get<std::string>()
-                << ", fig2_partial_more_error "
-                << claims["fig2_partial_more_error"]["verdict"].get<std::string>() << "\n";
+      std::cerr << "radquad figures: the report's claims on the scene-derived suites:";
+      const char* separator = " ";
+      for (const char* name : {"fig1_stratified_best", "fig2_gauss_best", "fig2_partial_more_error"}) {
+        const nlohmann::json& claim = claims[name];
+        std::cerr << separator << name << " " << claim["verdict"].get<std::string>()
+                  << (claim["fragile"].get<bool>() ? " (fragile)" : "");
+        separator = ", ";
+      }
+      std::cerr << "\n";
     }
   }
   plotting.finish();

@@ -1,5 +1,5 @@
 // `radquad reference LINK.json [--degree D] [--seed S] [--replicates R] [--gold
-// [--gold-method exact|stratified] [--gold-tolerance T]] [--quiet]`: the paper's
+// [--gold-method auto|exact|stratified] [--gold-tolerance T]] [--quiet]`: the paper's
 // 10,000-sample stratified reference of one link with its standard error, and optionally a
 // gold reference to measure how far it is off; prints one JSON object on stdout.
 //
@@ -8,7 +8,7 @@
 // it is estimated), `kernel_evaluations`, `visible_fraction`; with --gold, `gold` =
 // {method, form_factor, coupling, error = {kind, form_factor, coupling}, converged,
 // kernel_evaluations, and gauss_points, tolerance, lambert_check (Gauss) or tolerance,
-// receiver_points, shaft_occluders, outer_method, critical_segments (exact visibility)} and `reference_minus_gold` = {form_factor,
+// receiver_points, shaft_occluders, outer_method, critical_segments, unoccluded_apart, confirmed (exact visibility)} and `reference_minus_gold` = {form_factor,
 // max_abs_coupling, form_factor_in_standard_errors}. A gold that does not reach its tolerance
 // within its budget is printed too, and the exit status is 3.
 #include <cstdio>
@@ -34,7 +34,7 @@ struct ReferenceCommandOptions {
   std::uint64_t seed = 0;
   int replicates = ReferenceOptions{}.replicates;
   bool gold = false;
-  std::string goldMethod = "exact";
+  std::string goldMethod = goldMethodName(GoldOptions{}.method);
   double goldTolerance = GoldOptions{}.exactTolerance;
   bool quiet = false;
 };
@@ -92,9 +92,10 @@ void addReferenceCommand(CLI::App& app) {
                     "dense stratified)");
   command
       ->add_option("--gold-method", options->goldMethod,
-                   "Gold of occluded links: exact (exact visibility, deterministic) or stratified "
-                   "(dense stratified, for comparison)")
-      ->check(CLI::IsMember({"exact", "stratified"}))
+                   "auto: Gauss products where no occluder meets the link's shaft, exact "
+                   "visibility where one does (dense stratified beyond 64 occluder polygons); "
+                   "exact or stratified: that gold on any link")
+      ->check(CLI::IsMember({"auto", "exact", "stratified"}))
       ->capture_default_str();
   command
       ->add_option("--gold-tolerance", options->goldTolerance,

@@ -243,7 +243,12 @@ void placeOccluders(const GeometryRanges& ranges, ScenarioRandom& random, Genera
 }  // namespace
 
 const char* studyClassName(StudyClass linkClass) {
-  return linkClass == StudyClass::unoccluded ? "unoccluded" : "partial";
+  switch (linkClass) {
+    case StudyClass::unoccluded: return "unoccluded";
+    case StudyClass::partial: return "partial";
+    case StudyClass::singular: return "singular";
+  }
+  return "partial";
 }
 const char* orientationName(Orientation orientation) {
   for (const auto& [value, name] : kOrientationNames)

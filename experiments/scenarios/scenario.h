@@ -35,7 +35,9 @@
 
 namespace radquad {
 
-enum class StudyClass { unoccluded, partial };
+// The study's classes of links (docs/study.md): unoccluded, partially occluded, and singular
+// (touching, or cut by the other's plane: scene-derived links only; never generated).
+enum class StudyClass { unoccluded, partial, singular };
 enum class Orientation { parallel, perpendicular, tilted };
 // `scene`: the patches of a scene around a scene-derived link (experiments/study/scene_links.h);
 // never generated, so not a name the geometry ranges accept.

@@ -1,10 +1,12 @@
 #include "experiments/study/claims.h"
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "experiments/study/study_metrics.h"
+#include "experiments/study/study_statistics.h"
 
 namespace radquad {
 namespace {
@@ -25,6 +27,10 @@ std::vector<double> scores(const nlohmann::json& perLink, const std::string& key
   return out;
 }
 
+std::uint64_t tableSeed(const nlohmann::json& table) {
+  return table.at("options").at("seed").get<std::uint64_t>();
+}
+
 // The verdict of "numerator < denominator" from the ratio's interval.
 const char* lessVerdict(const PairedRatio& ratio) {
   if (ratio.high < 1.0) return "holds";
@@ -32,13 +38,8 @@ const char* lessVerdict(const PairedRatio& ratio) {
   return "inconclusive";
 }
 
-nlohmann::json comparison(const PairedRatio& ratio, const char* verdict) {
-  return {{"ratio", ratio.ratio}, {"low95", ratio.low}, {"high95", ratio.high},
-          {"verdict", verdict}};
-}
-
 // All hold: holds; any fails: fails; otherwise inconclusive.
-const char* overall(const std::vector<std::string>& verdicts) {
+std::string overall(const std::vector<std::string>& verdicts) {
   bool all = true;
   for (const std::string& verdict : verdicts) {
     if (verdict == "fails") return "fails";
@@ -47,85 +48,170 @@ const char* overall(const std::vector<std::string>& verdicts) {
   return all ? "holds" : "inconclusive";
 }
 
+// A link of a per-link table: its index there, and its candidate (and scene) when recorded.
+nlohmann::json linkName(const nlohmann::json& perLink, std::size_t index) {
+  nlohmann::json out = {{"link", index}};
+  const nlohmann::json& link = perLink.at(index);
+  if (link.contains("candidate")) out["candidate"] = link["candidate"];
+  if (link.contains("scene")) out["scene"] = link["scene"];
+  return out;
+}
+
+// The verdicts of a claim's comparisons, with and without each one's most influential link.
+struct Verdicts {
+  std::vector<std::string> all, without;
+  void add(const nlohmann::json& comparison) {
+    all.push_back(comparison["verdict"]);
+    without.push_back(comparison["most_influential_link"]["verdict_without"]);
+  }
+  // The claim's verdict, its verdict without the comparisons' most influential links, and
+  // whether they differ (fragile).
+  void into(nlohmann::json& claim, const char* prefix = "") const {
+    const std::string verdict = overall(all), withoutVerdict = overall(without);
+    claim[std::string(prefix) + "verdict"] = verdict;
+    claim[std::string(prefix) + "verdict_without_most_influential_links"] = withoutVerdict;
+    claim[std::string(prefix) + "fragile"] = verdict != withoutVerdict;
+  }
+};
+
+nlohmann::json ratioJson(const PairedRatio& ratio) {
+  return {{"ratio", ratio.ratio}, {"low95", ratio.low}, {"high95", ratio.high},
+          {"verdict", lessVerdict(ratio)}};
+}
+
+// An influential link's entry with the comparison redone without it.
+nlohmann::json withoutIt(nlohmann::json link, const PairedRatio& rest) {
+  link["ratio_without"] = rest.ratio;
+  link["low95_without"] = rest.low;
+  link["high95_without"] = rest.high;
+  link["verdict_without"] = lessVerdict(rest);
+  return link;
+}
+
+// "a < b" on the same links: the ratio of means with its bootstrap interval, the sign test,
+// and the most influential link with the comparison redone without it.
+nlohmann::json pairedComparison(const std::vector<double>& a, const std::vector<double>& b,
+                                const nlohmann::json& perLink, std::uint64_t seed) {
+  nlohmann::json out = ratioJson(pairedRatio(a, b, seed));
+  const SignTest sign = signTest(a, b);
+  out["links_below"] = sign.below;
+  out["links_above"] = sign.above;
+  out["links_tied"] = sign.ties;
+  out["sign_test_p"] = sign.pValue;
+  const Influence influence = mostInfluentialPaired(a, b);
+  const PairedRatio rest = pairedRatio(without(a, influence.index), without(b, influence.index), seed);
+  nlohmann::json link = linkName(perLink, influence.index);
+  link["share_of_numerator"] = influence.shareOfNumerator;
+  link["share_of_denominator"] = influence.shareOfDenominator;
+  out["most_influential_link"] = withoutIt(std::move(link), rest);
+  return out;
+}
+
+// "mean(a) < mean(b)" on different links (classes `aName` and `bName`).
+nlohmann::json unpairedComparison(const std::vector<double>& a, const std::vector<double>& b,
+                                  const nlohmann::json& aLinks, const nlohmann::json& bLinks,
+                                  const char* aName, const char* bName, std::uint64_t seed) {
+  nlohmann::json out = ratioJson(unpairedRatio(a, b, seed));
+  const Influence influence = mostInfluentialUnpaired(a, b);
+  const bool inB = influence.inDenominator;
+  const PairedRatio rest = inB ? unpairedRatio(a, without(b, influence.index), seed)
+                               : unpairedRatio(without(a, influence.index), b, seed);
+  nlohmann::json link = linkName(inB ? bLinks : aLinks, influence.index);
+  link["class"] = inB ? bName : aName;
+  link["share_of_its_class"] = inB ? influence.shareOfDenominator : influence.shareOfNumerator;
+  out["most_influential_link"] = withoutIt(std::move(link), rest);
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json reportClaims(const nlohmann::json& fig1, const nlohmann::json& fig2, bool vsGold) {
   const std::string suffix = vsGold ? "_vs_gold" : "";
-  nlohmann::json out = {{"scored_against", vsGold ? "gold" : "the paper's reference"}};
+  nlohmann::json out = {{"scored_against", vsGold ? "gold" : "the paper's reference"},
+                        {"interval", "bootstrap over links, " +
+                                         std::to_string(kBootstrapResamples) +
+                                         " resamples, 2.5% and 97.5% percentiles"}};
 
-  // 1. Stratified best on Figure 1.
+  // 1. Stratified best on Figure 1 (partial links: class 1).
   {
     const nlohmann::json& perLink = fig1.at("per_link");
-    const std::size_t stratified = ruleIndex(fig1, "Stratified");
-    const std::vector<double> mine = scores(perLink, "relative_error" + suffix, stratified);
+    const std::uint64_t seed = bootstrapSeed(tableSeed(fig1), 1);
+    const std::string key = "relative_error" + suffix;
+    const std::vector<double> mine = scores(perLink, key, ruleIndex(fig1, "Stratified"));
     nlohmann::json against = nlohmann::json::object();
-    std::vector<std::string> verdicts;
+    Verdicts verdicts;
     for (const nlohmann::json& rule : fig1.at("rules")) {
       const std::string name = rule["name"];
       if (name == "Stratified") continue;
-      const PairedRatio ratio =
-          pairedRatio(mine, scores(perLink, "relative_error" + suffix, ruleIndex(fig1, name)));
-      verdicts.push_back(lessVerdict(ratio));
-      against[name] = comparison(ratio, verdicts.back().c_str());
+      against[name] =
+          pairedComparison(mine, scores(perLink, key, ruleIndex(fig1, name)), perLink, seed);
+      verdicts.add(against[name]);
     }
-    out["fig1_stratified_best"] = {
+    nlohmann::json claim = {
         {"claim", "constant bases, partially occluded links: Stratified has the smallest mean "
                   "relative error of K[0][0] (ratio: Stratified / the other rule, paired)"},
         {"links", perLink.size()},
-        {"against", against},
-        {"verdict", overall(verdicts)}};
+        {"against", against}};
+    verdicts.into(claim);
+    out["fig1_stratified_best"] = claim;
   }
 
   // 2. Gauss far better with quadratic bases.
   {
     nlohmann::json classes = nlohmann::json::object();
-    std::vector<std::string> verdicts;
-    for (const char* linkClass : {"unoccluded", "partial"}) {
+    Verdicts verdicts;
+    for (const auto& [linkClass, classIndex] : {std::pair{"unoccluded", 0}, std::pair{"partial", 1}}) {
       const nlohmann::json& perLink = fig2.at("classes").at(linkClass).at("per_link");
-      const std::vector<double> gauss =
-          scores(perLink, "l1_error_bound_total" + suffix, ruleIndex(fig2, "FullGauss"));
+      const std::uint64_t seed = bootstrapSeed(tableSeed(fig2), std::uint64_t(classIndex));
+      const std::string key = "l1_error_bound_total" + suffix;
+      const std::vector<double> gauss = scores(perLink, key, ruleIndex(fig2, "FullGauss"));
       nlohmann::json against = nlohmann::json::object();
       for (const char* other : {"MonteCarlo", "NRook", "Stratified"}) {
-        const PairedRatio ratio = pairedRatio(
-            gauss, scores(perLink, "l1_error_bound_total" + suffix, ruleIndex(fig2, other)));
-        verdicts.push_back(lessVerdict(ratio));
-        against[other] = comparison(ratio, verdicts.back().c_str());
+        against[other] =
+            pairedComparison(gauss, scores(perLink, key, ruleIndex(fig2, other)), perLink, seed);
+        verdicts.add(against[other]);
       }
       classes[linkClass] = {{"links", perLink.size()}, {"against", against}};
     }
-    out["fig2_gauss_best"] = {
+    nlohmann::json claim = {
         {"claim", "quadratic bases: FullGauss has a smaller mean total L1 bound U_tot than every "
                   "Monte Carlo rule (ratio: FullGauss / the other rule, paired)"},
-        {"classes", classes},
-        {"verdict", overall(verdicts)}};
+        {"classes", classes}};
+    verdicts.into(claim);
+    out["fig2_gauss_best"] = claim;
   }
 
-  // 3. Partial links carry more error.
+  // 3. Partial links carry more error (the two classes resampled independently, from the
+  // partial class's seed).
   {
     const nlohmann::json& partial = fig2.at("classes").at("partial").at("per_link");
     const nlohmann::json& unoccluded = fig2.at("classes").at("unoccluded").at("per_link");
+    const std::uint64_t seed = bootstrapSeed(tableSeed(fig2), 1);
     nlohmann::json rules = nlohmann::json::object();
-    std::vector<std::string> verdicts, scaleFree;
+    Verdicts bound, scaleFree;
     for (const nlohmann::json& rule : fig2.at("classes").at("partial").at("rules")) {
       const std::string name = rule["name"];
       const std::size_t r = ruleIndex(fig2, name);
       // "unoccluded < partial": the ratio unoccluded / partial below 1.
-      const PairedRatio bound = unpairedRatio(scores(unoccluded, "l1_error_bound_total" + suffix, r),
-                                              scores(partial, "l1_error_bound_total" + suffix, r));
-      const PairedRatio frobenius =
-          unpairedRatio(scores(unoccluded, "relative_frobenius_error" + suffix, r),
-                        scores(partial, "relative_frobenius_error" + suffix, r));
-      verdicts.push_back(lessVerdict(bound));
-      scaleFree.push_back(lessVerdict(frobenius));
-      rules[name] = {{"l1_error_bound_total", comparison(bound, verdicts.back().c_str())},
-                     {"relative_frobenius_error", comparison(frobenius, scaleFree.back().c_str())}};
+      nlohmann::json entry;
+      for (const char* metric : {"l1_error_bound_total", "relative_frobenius_error"}) {
+        entry[metric] = unpairedComparison(scores(unoccluded, metric + suffix, r),
+                                           scores(partial, metric + suffix, r), unoccluded,
+                                           partial, "unoccluded", "partial", seed);
+      }
+      bound.add(entry["l1_error_bound_total"]);
+      scaleFree.add(entry["relative_frobenius_error"]);
+      rules[name] = entry;
     }
-    out["fig2_partial_more_error"] = {
+    nlohmann::json claim = {
         {"claim", "partially occluded links carry more error than unoccluded ones, for every "
                   "rule (ratio: unoccluded / partial mean, unpaired)"},
-        {"rules", rules},
-        {"verdict", overall(verdicts)},
-        {"scale_free", {{"metric", "relative_frobenius_error"}, {"verdict", overall(scaleFree)}}}};
+        {"rules", rules}};
+    bound.into(claim);
+    nlohmann::json free = {{"metric", "relative_frobenius_error"}};
+    scaleFree.into(free);
+    claim["scale_free"] = free;
+    out["fig2_partial_more_error"] = claim;
   }
   return out;
 }

@@ -4,6 +4,13 @@
 // or "inconclusive" (it contains 1). A claim that fails with a correct implementation is a
 // finding, recorded as such; the suites are never tuned to make a claim hold.
 //
+// Intervals are bootstrap intervals over links (study_statistics.h), drawn from the tables'
+// seeds (bootstrapSeed), so the claims are the same bits on every run. Every comparison also
+// gives the sign test of its per-link differences (paired claims) and its most influential
+// link: the one whose removal moves the ratio the most, its share of each sum, and the ratio,
+// interval and verdict without it. A claim whose verdict changes when every comparison loses
+// its most influential link is `fragile`: one link decides it.
+//
 // 1. fig1_stratified_best: "stratified sampling performs best" on partially occluded links
 //    with constant bases: Stratified's mean relative error of K[0][0] against every other
 //    rule's, paired on the same links.

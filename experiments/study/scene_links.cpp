@@ -92,25 +92,20 @@ SceneLinkPool::SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed
   for (Solved& scene : solved) {
     total_ += scene.total;
     occluded_ += scene.occluded;
+    solverUnoccluded_ += scene.unoccluded.size();
     elements_.push_back(std::move(scene.elements));
-    unoccluded_.insert(unoccluded_.end(), scene.unoccluded.begin(), scene.unoccluded.end());
-    partial_.insert(partial_.end(), scene.partial.begin(), scene.partial.end());
+    links_.insert(links_.end(), scene.unoccluded.begin(), scene.unoccluded.end());
+    links_.insert(links_.end(), scene.partial.begin(), scene.partial.end());
   }
-  // A seeded Fisher-Yates shuffle per class: candidate k is the k-th of a uniform sample.
-  for (auto* links : {&unoccluded_, &partial_}) {
-    ScenarioRandom random(deriveSeed(seed, {links == &partial_ ? 1u : 0u, 7}));
-    for (std::size_t k = links->size(); k > 1; --k) {
-      std::swap((*links)[k - 1], (*links)[std::size_t(random.index(k))]);
-    }
+  // A seeded Fisher-Yates shuffle: candidate k is the k-th of a uniform sample.
+  ScenarioRandom random(deriveSeed(seed, {7}));
+  for (std::size_t k = links_.size(); k > 1; --k) {
+    std::swap(links_[k - 1], links_[std::size_t(random.index(k))]);
   }
 }
 
-std::size_t SceneLinkPool::size(StudyClass linkClass) const {
-  return linkClass == StudyClass::partial ? partial_.size() : unoccluded_.size();
-}
-
-SceneLinkEntry SceneLinkPool::entry(StudyClass linkClass, std::size_t k) const {
-  const CompactLink& link = linkClass == StudyClass::partial ? partial_.at(k) : unoccluded_.at(k);
+SceneLinkEntry SceneLinkPool::entry(std::size_t k) const {
+  const CompactLink& link = links_.at(k);
   const std::vector<ElementRecord>& elements = elements_[std::size_t(link.scene)];
   const ElementRecord& receiver = elements[std::size_t(link.receiver)];
   const ElementRecord& source = elements[std::size_t(link.source)];

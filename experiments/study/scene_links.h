@@ -5,12 +5,14 @@
 // A study config's "links": {"scene": NAME or PATH or [NAME or PATH, ...], "degree": D,
 // "bf_eps": E} solves each scene with fixed Gauss rules at basis degree D and BF threshold E
 // (other solver options at their defaults), and takes its final active links: receiver and
-// source elements as patches, every other patch of that scene as an occluder, the class from
-// the solver's visibility classification (unoccluded or partial; occluded links carry nothing
-// and are not scored). The links of several scenes form one pool. Candidate k of a class is
-// the link at position k of that class's links in a fixed pseudo-random order drawn from the
-// study's seed, so a suite of N links is a uniform sample without replacement of the pool,
-// the same for any thread count.
+// source elements as patches, every other patch of that scene as an occluder. Links the solver
+// classifies occluded carry nothing and are not scored; every other one, whatever the
+// solver's class (a conservative one: its "partial" holds links no occluder touches), is in
+// one pool, and the study decides each link's class by the link's own geometry and visibility
+// (study_runner.h). The links of several scenes form one pool. Candidate k is the link at
+// position k of the pool in a fixed pseudo-random order drawn from the study's seed, so the
+// first N candidates of a class are a uniform sample without replacement of the pool's links
+// of that class, the same for any thread count.
 #pragma once
 
 #include <cstdint>
@@ -50,13 +52,16 @@ class SceneLinkPool {
   // fails.
   SceneLinkPool(const SceneLinkOptions& options, std::uint64_t seed);
 
-  // Links of the class in sampling order (StudyClass::unoccluded or partial).
-  std::size_t size(StudyClass linkClass) const;
-  SceneLinkEntry entry(StudyClass linkClass, std::size_t k) const;
+  // The pool's links in sampling order.
+  std::size_t size() const { return links_.size(); }
+  SceneLinkEntry entry(std::size_t k) const;
   // The link with every patch of its scene but its own two as occluders.
   LinkGeometry geometry(const SceneLinkEntry& entry) const;
   std::size_t totalLinks() const { return total_; }
   std::size_t occludedLinks() const { return occluded_; }
+  // The solver's classes of the pool's links (for the table; the study reclassifies).
+  std::size_t solverUnoccludedLinks() const { return solverUnoccluded_; }
+  std::size_t solverPartialLinks() const { return links_.size() - solverUnoccluded_; }
   const std::vector<std::string>& sceneNames() const { return names_; }
 
  private:
@@ -72,8 +77,8 @@ class SceneLinkPool {
   std::vector<std::string> names_;
   std::vector<Scene> scenes_;
   std::vector<std::vector<ElementRecord>> elements_;  // per scene, by element index
-  std::vector<CompactLink> unoccluded_, partial_;
-  std::size_t total_ = 0, occluded_ = 0;
+  std::vector<CompactLink> links_;
+  std::size_t total_ = 0, occluded_ = 0, solverUnoccluded_ = 0;
 };
 
 }  // namespace radquad

@@ -48,8 +48,9 @@ StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& whe
   config.seed = value["seed"].get<std::uint64_t>();
 
   const auto& classes = value["classes"];
-  checkKeys(classes, where + ": classes", {"unoccluded", "partial"}, {});
-  for (const StudyClass linkClass : {StudyClass::unoccluded, StudyClass::partial}) {
+  checkKeys(classes, where + ": classes", {"unoccluded", "partial", "singular"}, {});
+  for (const StudyClass linkClass :
+       {StudyClass::unoccluded, StudyClass::partial, StudyClass::singular}) {
     const char* name = studyClassName(linkClass);
     if (classes.contains(name)) {
       config.classes.emplace_back(
@@ -93,11 +94,13 @@ StudyConfig parseStudyConfig(const nlohmann::json& value, const std::string& whe
   if (value.contains("geometry"))
     config.geometry = parseGeometryRanges(value["geometry"], where + ": geometry");
   if (value.contains("links")) {
-    if (value.contains("geometry") || value.contains("visible_fraction")) {
-      throw InputError(where + ": links: scene-derived links take neither geometry nor "
-                               "visible_fraction (their class is the solver's)");
+    if (value.contains("geometry")) {
+      throw InputError(where + ": links: scene-derived links take no geometry");
     }
     config.sceneLinks = parseSceneLinkOptions(value["links"], where + ": links");
+  } else if (classes.contains("singular")) {
+    throw InputError(where + ": classes: singular links are scene-derived only (generated "
+                             "links never touch); give \"links\"");
   }
   return config;
 }

@@ -3,7 +3,8 @@
 //   figure      "fig1" (constant bases, relative error of K[0][0]) or "fig2" (quadratic
 //               bases, L1 error bound per source function); required
 //   seed        unsigned integer; every link, trial and reference seed derives from it; required
-//   classes     {"partial": N} and/or {"unoccluded": N}: links wanted per class; required
+//   classes     {"partial": N}, {"unoccluded": N} and, scene-derived links only,
+//               {"singular": N}: links wanted per class; required
 //   rules       rule names as `radquad rules` lists them; required
 //   trials      independent trials of each random rule per link (default 10)
 //   reference   the paper's reference: {"strata_per_axis": 10, "replicates": 10}; the
@@ -15,7 +16,7 @@
 //               reference_estimate.h; reference/gold_reference.h)
 //   links       optional: {"scene": NAME or PATH, "degree": 2, "bf_eps": 0.05}: the links of
 //               a solve of that scene instead of generated ones (experiments/study/
-//               scene_links.h); `geometry` and `visible_fraction` then do not apply
+//               scene_links.h); `geometry` then does not apply
 //   visible_fraction  [low, high]: a partial link's reference visible fraction must lie
 //               strictly inside (default [0.05, 0.95])
 //   max_candidates_per_link  give up on a class after N times its link count of candidates
@@ -45,7 +46,7 @@ enum class StudyFigure { fig1, fig2 };
 struct StudyConfig {
   StudyFigure figure = StudyFigure::fig1;
   std::uint64_t seed = 1;
-  std::vector<std::pair<StudyClass, int>> classes;  // in the order unoccluded, partial
+  std::vector<std::pair<StudyClass, int>> classes;  // in the order unoccluded, partial, singular
   std::vector<std::string> rules;
   int trials = 10;
   ReferenceOptions reference;

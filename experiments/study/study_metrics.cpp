@@ -41,43 +41,6 @@ double relativeFrobeniusError(const Eigen::MatrixXd& estimate, const Eigen::Matr
   return (estimate - reference).norm() / reference.norm();
 }
 
-PairedRatio pairedRatio(const std::vector<double>& numerator,
-                        const std::vector<double>& denominator) {
-  const std::size_t n = std::min(numerator.size(), denominator.size());
-  PairedRatio out;
-  if (n == 0) return out;
-  double sumA = 0.0, sumB = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sumA += numerator[i];
-    sumB += denominator[i];
-  }
-  out.ratio = sumA / sumB;
-  out.low = out.high = out.ratio;
-  if (n < 2) return out;
-  const double meanB = sumB / double(n);
-  double squares = 0.0;  // z has mean 0 by construction of the ratio
-  for (std::size_t i = 0; i < n; ++i) {
-    const double z = (numerator[i] - out.ratio * denominator[i]) / meanB;
-    squares += z * z;
-  }
-  const double relative = std::sqrt(squares / double(n - 1) / double(n)) / out.ratio;
-  out.low = out.ratio * std::exp(-1.96 * relative);
-  out.high = out.ratio * std::exp(1.96 * relative);
-  return out;
-}
-
-PairedRatio unpairedRatio(const std::vector<double>& numerator,
-                          const std::vector<double>& denominator) {
-  const SummaryStatistics a = summarize(numerator), b = summarize(denominator);
-  PairedRatio out;
-  out.ratio = a.mean / b.mean;
-  const double relative =
-      std::sqrt(a.sem * a.sem / (a.mean * a.mean) + b.sem * b.sem / (b.mean * b.mean));
-  out.low = out.ratio * std::exp(-1.96 * relative);
-  out.high = out.ratio * std::exp(1.96 * relative);
-  return out;
-}
-
 SummaryStatistics summarize(std::vector<double> values) {
   SummaryStatistics out;
   out.count = values.size();
@@ -95,6 +58,7 @@ SummaryStatistics summarize(std::vector<double> values) {
   out.median = quantile(0.5);
   out.p90 = quantile(0.9);
   out.max = values.back();
+  out.largestShare = sum == 0.0 ? 0.0 : out.max / sum;
   if (values.size() > 1) {
     double squares = 0.0;
     for (const double value : values) squares += (value - out.mean) * (value - out.mean);
@@ -105,7 +69,8 @@ SummaryStatistics summarize(std::vector<double> values) {
 
 nlohmann::json statisticsToJson(const SummaryStatistics& statistics) {
   return {{"mean", statistics.mean}, {"median", statistics.median}, {"p90", statistics.p90},
-          {"max", statistics.max},   {"sem", statistics.sem},       {"count", statistics.count}};
+          {"max", statistics.max},   {"sem", statistics.sem},       {"count", statistics.count},
+          {"largest_share", statistics.largestShare}};
 }
 
 double sum(const std::vector<double>& values) {

@@ -15,23 +15,6 @@ double relativeError(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& ref
 // be compared; U_b is an absolute error per unit area and follows the link's size of K.
 double relativeFrobeniusError(const Eigen::MatrixXd& estimate, const Eigen::MatrixXd& reference);
 
-// The ratio of the means of paired samples, sum a_i / sum b_i, with a 95% confidence
-// interval by the delta method: the linearised ratio z_i = (a_i - ratio b_i) / mean(b) has
-// standard error se = sd(z) / sqrt(n); the interval is taken on the log of the ratio,
-// ratio exp(-+1.96 se / ratio), so that it stays positive when the errors are heavy-tailed
-// (a normal interval on the ratio itself went below 0 on the scene suites). n >= 2, else the
-// interval is the ratio itself.
-struct PairedRatio {
-  double ratio = 0.0, low = 0.0, high = 0.0;
-};
-PairedRatio pairedRatio(const std::vector<double>& numerator, const std::vector<double>& denominator);
-
-// The ratio of the means of two independent samples (different links), mean(a) / mean(b),
-// with a 95% interval by the delta method on its log: relative standard error
-// s = sqrt(sem(a)^2 / mean(a)^2 + sem(b)^2 / mean(b)^2), interval ratio exp(-+1.96 s).
-PairedRatio unpairedRatio(const std::vector<double>& numerator,
-                          const std::vector<double>& denominator);
-
 // Figure 2: for each source function b (its coefficient 1, the others 0), the upper bound on
 // the L1 error per unit receiver area
 //   U_b = (1/A_r) sum_a |K~[a][b] - K[a][b]| int_{A_r} |M_a| dA,
@@ -45,6 +28,9 @@ struct SummaryStatistics {
   double p90 = 0.0;  // linear interpolation between order statistics at q (n - 1)
   double max = 0.0;
   double sem = 0.0;  // sample standard deviation / sqrt(n); 0 for n < 2
+  // The largest value's share of the sum: how much of the mean one link carries
+  // (study_statistics.h, largestShare); 0 when the sum is 0.
+  double largestShare = 0.0;
   std::size_t count = 0;
 };
 

@@ -343,6 +343,24 @@ nlohmann::json runStudyToFile(const StudyConfig& config, const std::filesystem::
   writeRunRecord(outPath, {{"elapsed_seconds", elapsed}});
   if (!linksOutPath.empty()) writeFileAtomically(linksOutPath, linkLines);
   if (options.progress) {
+    // Scene links refused for an unconverged gold (each replaced by the next candidate of its
+    // class; the tables' candidates.refused_unconverged_gold).
+    const auto refusals = [&](const std::string& name, const nlohmann::json& candidates) {
+      const int refused = candidates.value("refused_unconverged_gold", 0);
+      if (refused > 0) {
+        std::cerr << "radquad study: " << name << ": " << refused
+                  << " scene link(s) refused, their gold unconverged (candidates "
+                  << candidates["refused_gold_candidates"].dump()
+                  << "), each replaced by the next candidate of the class\n";
+      }
+    };
+    if (table.contains("classes")) {
+      for (const auto& [name, classTable] : table["classes"].items()) {
+        refusals(name, classTable["candidates"]);
+      }
+    } else {
+      refusals("partial", table["candidates"]);
+    }
     std::cerr << "radquad study: wrote " << outPath.string() << " in " << elapsed << " s\n";
   }
   return table;

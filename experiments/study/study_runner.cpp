@@ -20,6 +20,8 @@
 #include "quadrature/estimate.h"
 #include "quadrature/prepared_rule.h"
 #include "quadrature/registry.h"
+#include "reference/exact_visibility.h"
+#include "reference/gold_reference.h"
 
 namespace radquad {
 namespace {
@@ -58,7 +60,7 @@ CandidateGeometry candidateGeometry(const StudyConfig& config, const Scorers& sc
                                     std::size_t classIndex, StudyClass linkClass,
                                     std::uint64_t index) {
   if (scorers.pool != nullptr) {
-    const SceneLinkEntry entry = scorers.pool->entry(linkClass, std::size_t(index));
+    const SceneLinkEntry entry = scorers.pool->entry(std::size_t(index));
     return {scorers.pool->geometry(entry).build(), orientationOf(entry.receiver, entry.source),
             OccluderKind::scene, scorers.pool->sceneNames().at(std::size_t(entry.scene))};
   }
@@ -71,6 +73,8 @@ struct Candidate {
   bool accepted = false;
   bool mostlyBlocked = false;
   bool occluderCrossesPatch = false;
+  bool goldRefused = false;  // scene-derived: its gold did not converge (scoreLink)
+  const char* ownClass = nullptr;  // scene-derived: sceneLinkClass
   std::uint64_t rays = 0;
   LinkIntegral draw;  // the reference's reported draw, kept for the scoring pass
   LinkRecord record;
@@ -79,6 +83,20 @@ struct Candidate {
 void addInto(std::vector<double>& sum, const std::vector<double>& values, double scale) {
   sum.resize(values.size(), 0.0);
   for (std::size_t k = 0; k < values.size(); ++k) sum[k] += scale * values[k];
+}
+
+// sceneLinkClass in two steps: by geometry alone ("singular", "unoccluded", or null when an
+// occluder meets the shaft), then an occluded link by its visible fraction.
+const char* geometricClass(const Link& link) {
+  if (singularLink(link)) return "singular";
+  if (ExactVisibility(link).occludersInShaft() == 0) return "unoccluded";
+  return nullptr;
+}
+
+const char* occludedClass(double visibleFraction, const StudyConfig& config) {
+  if (visibleFraction <= config.minVisibleFraction) return "mostly_blocked";
+  if (visibleFraction >= config.maxVisibleFraction) return "mostly_visible";
+  return "partial";
 }
 
 // First pass over a candidate: its geometry and the reference's reported draw, whose rays
@@ -104,6 +122,15 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
       }
     }
   }
+  // Scene-derived: singular and unoccluded links are known from their geometry; a candidate of
+  // another class is counted without drawing its rays.
+  const char* geometric = scorers.pool != nullptr ? geometricClass(link) : nullptr;
+  if (geometric != nullptr && std::string(geometric) != studyClassName(linkClass)) {
+    out.record.candidate = index;
+    out.ownClass = geometric;
+    out.accepted = false;
+    return;
+  }
   scorers.reference.draw(link, deriveSeed(config.seed, {classIndex, index, 1}), accumulator,
                          out.draw);
   out.rays = out.draw.raysCast;
@@ -115,7 +142,10 @@ void classifyCandidate(const StudyConfig& config, const Scorers& scorers, std::s
   record.distanceFactor = distanceFactorOf(link.receiver, link.source);
   record.visibleFraction = out.draw.visibleFraction();
   out.accepted = true;
-  if (linkClass == StudyClass::partial && scorers.pool == nullptr) {
+  if (scorers.pool != nullptr) {
+    out.ownClass = geometric != nullptr ? geometric : occludedClass(record.visibleFraction, config);
+    out.accepted = std::string(out.ownClass) == studyClassName(linkClass);
+  } else if (linkClass == StudyClass::partial) {
     out.mostlyBlocked = record.visibleFraction <= config.minVisibleFraction;
     out.accepted = !out.mostlyBlocked && record.visibleFraction < config.maxVisibleFraction;
   }
@@ -146,6 +176,13 @@ void scoreLink(const StudyConfig& config, const Scorers& scorers, std::size_t cl
     record.goldRelativeError = gold.couplingError(0, 0) / G(0, 0);
     record.goldMaxRelativeError = gold.couplingError.maxCoeff() / G.cwiseAbs().maxCoeff();
     record.goldConverged = gold.converged;
+    // A scene link whose gold cannot vouch for its error is refused, and the class takes the
+    // next candidate of its own class instead (runClass); its rules are not scored. A
+    // generated link keeps its unconverged gold: the table counts it and the run fails.
+    if (!gold.converged && scorers.pool != nullptr) {
+      candidate.goldRefused = true;
+      return;
+    }
     for (const double b : l1ErrorBound(gold.couplingError, area)) record.goldL1BoundTotal += b;
     record.goldFrobeniusError = gold.couplingError.norm() / G.norm();
     record.referenceRelativeErrorVsGold = relativeError(K, G);
@@ -206,18 +243,21 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                   std::size_t classIndex, StudyClass linkClass, int wanted) {
   ClassRun run;
   run.linkClass = linkClass;
+  std::uint64_t limit = std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
   if (scorers.pool != nullptr) {
-    // Scene-derived: every link qualifies; a class holds at most the scene's links.
-    run.available = scorers.pool->size(linkClass);
-    wanted = int(std::min<std::size_t>(std::size_t(wanted), run.available));
+    // Scene-derived: the pool's links of the class, in sampling order; a class whose links the
+    // pool runs out of holds all of them.
+    run.available = scorers.pool->size();
+    if (run.available <= limit) {
+      limit = run.available;
+      wanted = int(std::min<std::size_t>(std::size_t(wanted), run.available));
+    }
   }
   run.wanted = wanted;
-  const std::uint64_t limit = scorers.pool != nullptr
-                                  ? std::uint64_t(wanted)
-                                  : std::uint64_t(wanted) * std::uint64_t(config.maxCandidatesPerLink);
   tbb::enumerable_thread_specific<CouplingAccumulator> accumulators;
   std::vector<Candidate> candidates;
   while (run.links.size() < std::size_t(wanted)) {
+    if (run.generated >= limit && scorers.pool != nullptr && limit == run.available) break;
     if (run.generated >= limit) {
       throw InputError(std::string("class '") + studyClassName(linkClass) + "': only " +
                        std::to_string(run.links.size()) + " of " + std::to_string(wanted) +
@@ -249,8 +289,11 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
       const Candidate& candidate = candidates[k];
       ++run.generated;
       run.referenceRays += candidate.rays;
+      if (candidate.ownClass != nullptr) ++run.candidatesByOwnClass[candidate.ownClass];
       if (candidate.accepted) {
         kept.push_back(k);
+      } else if (candidate.ownClass != nullptr) {
+        // Scene-derived: another class's link, counted by its own class above.
       } else if (candidate.occluderCrossesPatch) {
         ++run.rejectedOccluderCrossesPatch;
       } else if (candidate.mostlyBlocked) {
@@ -267,7 +310,15 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
                                     candidates[kept[k]]);
                         }
                       });
-    for (const std::size_t k : kept) run.links.push_back(std::move(candidates[k].record));
+    // Refused links leave their places to the next candidates of the class: the suite is the
+    // first N qualifying candidates whose gold converged, whatever the batch sizes.
+    for (const std::size_t k : kept) {
+      if (candidates[k].goldRefused) {
+        run.refusedGoldCandidates.push_back(candidates[k].record.candidate);
+      } else {
+        run.links.push_back(std::move(candidates[k].record));
+      }
+    }
     if (options.progress) {
       std::cerr << "radquad study: " << studyClassName(linkClass) << " links " << run.links.size()
                 << "/" << wanted << " (" << run.generated << " candidates)\n";
@@ -277,6 +328,11 @@ ClassRun runClass(const StudyConfig& config, const StudyOptions& options, const 
 }
 
 }  // namespace
+
+const char* sceneLinkClass(const Link& link, double visibleFraction, const StudyConfig& config) {
+  const char* geometric = geometricClass(link);
+  return geometric != nullptr ? geometric : occludedClass(visibleFraction, config);
+}
 
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
   const int degree = config.degree();
@@ -299,6 +355,8 @@ StudyRun runStudy(const StudyConfig& config, const StudyOptions& options) {
     scorers.pool = pool.get();
     run.sceneLinks = pool->totalLinks();
     run.sceneOccludedLinks = pool->occludedLinks();
+    run.sceneSolverUnoccluded = pool->solverUnoccludedLinks();
+    run.sceneSolverPartial = pool->solverPartialLinks();
   }
   run.referenceName = scorers.reference.name();
   run.referenceSamples = scorers.reference.samples();

@@ -2,16 +2,28 @@
 // links: the reference's visible fraction inside the config's range), and scores every rule
 // on them against the reference (and, on request, the gold reference).
 //
+// Scene-derived links are classed by their own geometry and visibility, not by the solver's
+// conservative class (sceneLinkClass): singular when the patches touch or one crosses the
+// other's plane (singularLink, reference/gold_reference.h: the kernel is not smooth, product
+// rules do not apply, and the solver integrates such links with composite rules); otherwise
+// unoccluded when no occluder meets the link's shaft (ExactVisibility::occludersInShaft,
+// exact: the gold's own choice); otherwise partial when the reference's visible fraction lies
+// inside the config's range, and "mostly_blocked" or "mostly_visible" (not scored) beyond it,
+// as for generated links.
+//
 // Determinism: candidate k of class c is drawn from deriveSeed(seed, {c, k, 0}); its
 // reference uses deriveSeed(seed, {c, k, 1}), its gold deriveSeed(seed, {c, k, 2}), and trial
 // t of a random rule deriveSeed(seed, {c, k, 3, t}) (a rule of listed draws: its draw t, on
 // every link). Candidates are scored in parallel
 // (oneTBB) and stored by index; the first N qualifying candidates in index order form the
-// suite, so the output does not depend on the thread count.
+// suite, so the output does not depend on the thread count. A scene-derived link whose gold
+// does not converge is refused (ClassRun::refusedGoldCandidates) and the next qualifying
+// candidate takes its place; a generated one keeps its unconverged gold (the run fails).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -85,7 +97,12 @@ struct ClassRun {
   std::uint64_t rejectedOccluderCrossesPatch = 0;  // an occluder passes through a patch
   std::vector<LinkRecord> links;            // accepted, in candidate order
   std::uint64_t referenceRays = 0;          // over every candidate drawn
-  std::size_t available = 0;                // scene-derived: the scene's links of the class
+  std::size_t available = 0;                // scene-derived: the links in the pool
+  // Scene-derived: the candidates drawn, by their own class (sceneLinkClass).
+  std::map<std::string, std::uint64_t> candidatesByOwnClass;
+  // Scene-derived, with gold: the candidates of the class refused because their gold did not
+  // converge (each replaced by the next candidate of the class), in candidate order.
+  std::vector<std::uint64_t> refusedGoldCandidates;
 };
 
 struct RuleInfo {
@@ -100,9 +117,16 @@ struct StudyRun {
   std::string referenceName;
   std::size_t referenceSamples = 0;
   std::vector<ClassRun> classes;
-  // Scene-derived links: the solve's final active links, and the occluded ones among them.
+  // Scene-derived links: the solve's final active links, the occluded ones among them, and
+  // the solver's classes of the others (the pool).
   std::size_t sceneLinks = 0, sceneOccludedLinks = 0;
+  std::size_t sceneSolverUnoccluded = 0, sceneSolverPartial = 0;
 };
+
+// The class of a scene-derived link by its own geometry and visibility (above): "singular",
+// "unoccluded", "partial", "mostly_blocked" or "mostly_visible"; `visibleFraction` is the
+// reference's.
+const char* sceneLinkClass(const Link& link, double visibleFraction, const StudyConfig& config);
 
 // Throws InputError when a class cannot be filled within max_candidates_per_link.
 StudyRun runStudy(const StudyConfig& config, const StudyOptions& options);

@@ -10,6 +10,7 @@
 #include "experiments/study/study_link_tables.h"
 #include "experiments/study/study_metrics.h"
 #include "experiments/study/study_runner.h"
+#include "experiments/study/study_statistics.h"
 
 namespace radquad {
 namespace {
@@ -59,7 +60,8 @@ nlohmann::json boundTable(const std::vector<LinkRecord>& links, const auto& pick
           {"per_source_function_max", maxima},
           {"total_median", totalStatistics.median},
           {"total_p90", totalStatistics.p90},
-          {"total_max", totalStatistics.max}};
+          {"total_max", totalStatistics.max},
+          {"total_largest_share", totalStatistics.largestShare}};
 }
 
 nlohmann::json standardErrorSummary(const std::vector<LinkRecord>& links) {
@@ -84,7 +86,12 @@ nlohmann::json candidateCounts(const ClassRun& run) {
                             {"reference_rays", run.referenceRays},
                             {"accepted_by_occluder", byOccluder},
                             {"accepted_by_orientation", byOrientation}};
-  if (run.available > 0) counts["scene_links_of_class"] = run.available;
+  if (run.available > 0) {
+    counts["scene_links_in_pool"] = run.available;
+    counts["by_own_class"] = run.candidatesByOwnClass;
+    counts["refused_unconverged_gold"] = run.refusedGoldCandidates.size();
+    counts["refused_gold_candidates"] = run.refusedGoldCandidates;
+  }
   return counts;
 }
 
@@ -96,16 +103,21 @@ int fullGaussIndex(const StudyRun& run) {
   return -1;
 }
 
-// {ratio, low, high} of rule r's mean score to FullGauss's on the same links.
+// {ratio, low, high} of rule r's mean score to FullGauss's on the same links, the interval by
+// the class's bootstrap over links (study_statistics.h), and the sign test of the per-link
+// differences (links where the rule's score is below FullGauss's, above, tied; p-value).
 nlohmann::json ratioToFullGauss(const std::vector<LinkRecord>& links, std::size_t r, int fullGauss,
-                                const auto& pick) {
+                                std::uint64_t seed, const auto& pick) {
   std::vector<double> rule, base;
   for (const LinkRecord& link : links) {
     rule.push_back(pick(link, r));
     base.push_back(pick(link, std::size_t(fullGauss)));
   }
-  const PairedRatio ratio = pairedRatio(rule, base);
-  return {{"ratio", ratio.ratio}, {"low95", ratio.low}, {"high95", ratio.high}};
+  const PairedRatio ratio = pairedRatio(rule, base, seed);
+  const SignTest sign = signTest(rule, base);
+  return {{"ratio", ratio.ratio}, {"low95", ratio.low}, {"high95", ratio.high},
+          {"links_below", sign.below}, {"links_above", sign.above}, {"links_tied", sign.ties},
+          {"sign_test_p", sign.pValue}};
 }
 
 // The gold's own mean error over the rule's mean error against the gold, per metric of the
@@ -144,7 +156,7 @@ nlohmann::json goldNoiseShare(const std::vector<LinkRecord>& links, std::size_t 
 }
 
 nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& classRun, bool gold,
-                         bool fig2) {
+                         bool fig2, std::uint64_t seed) {
   const RuleInfo& rule = run.rules[r];
   const auto& links = classRun.links;
   nlohmann::json entry = {
@@ -159,7 +171,7 @@ nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& cla
   const auto pickRelative = [](const LinkRecord& l, std::size_t k) { return l.relativeError[k]; };
   nlohmann::json ratios = nlohmann::json::object();
   if (fullGauss >= 0 && !links.empty()) {
-    ratios["relative_error"] = ratioToFullGauss(links, r, fullGauss, pickRelative);
+    ratios["relative_error"] = ratioToFullGauss(links, r, fullGauss, seed, pickRelative);
   }
   if (fig2) {
     entry["l1_error_bound"] = boundTable(
@@ -168,9 +180,9 @@ nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& cla
         summarize(column(links, [r](const LinkRecord& l) { return l.frobeniusError[r]; })));
     if (fullGauss >= 0 && !links.empty()) {
       ratios["l1_error_bound_total"] = ratioToFullGauss(
-          links, r, fullGauss, [](const LinkRecord& l, std::size_t k) { return sum(l.l1Bound[k]); });
+          links, r, fullGauss, seed, [](const LinkRecord& l, std::size_t k) { return sum(l.l1Bound[k]); });
       ratios["relative_frobenius_error"] = ratioToFullGauss(
-          links, r, fullGauss, [](const LinkRecord& l, std::size_t k) { return l.frobeniusError[k]; });
+          links, r, fullGauss, seed, [](const LinkRecord& l, std::size_t k) { return l.frobeniusError[k]; });
     }
   }
   if (gold) {
@@ -178,7 +190,7 @@ nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& cla
         summarize(column(links, [r](const LinkRecord& l) { return l.relativeErrorVsGold[r]; })));
     if (fullGauss >= 0 && !links.empty()) {
       ratios["relative_error_vs_gold"] = ratioToFullGauss(
-          links, r, fullGauss, [](const LinkRecord& l, std::size_t k) { return l.relativeErrorVsGold[k]; });
+          links, r, fullGauss, seed, [](const LinkRecord& l, std::size_t k) { return l.relativeErrorVsGold[k]; });
     }
     if (fig2) {
       entry["l1_error_bound_vs_gold"] = boundTable(
@@ -188,11 +200,11 @@ nlohmann::json ruleEntry(const StudyRun& run, std::size_t r, const ClassRun& cla
           column(links, [r](const LinkRecord& l) { return l.frobeniusErrorVsGold[r]; })));
       if (fullGauss >= 0 && !links.empty()) {
         ratios["l1_error_bound_total_vs_gold"] =
-            ratioToFullGauss(links, r, fullGauss, [](const LinkRecord& l, std::size_t k) {
+            ratioToFullGauss(links, r, fullGauss, seed, [](const LinkRecord& l, std::size_t k) {
               return sum(l.l1BoundVsGold[k]);
             });
         ratios["relative_frobenius_error_vs_gold"] =
-            ratioToFullGauss(links, r, fullGauss, [](const LinkRecord& l, std::size_t k) {
+            ratioToFullGauss(links, r, fullGauss, seed, [](const LinkRecord& l, std::size_t k) {
               return l.frobeniusErrorVsGold[k];
             });
       }
@@ -228,15 +240,19 @@ nlohmann::json classReference(const StudyRun& run, const ClassRun& classRun, boo
   return reference;
 }
 
-nlohmann::json classTable(const StudyRun& run, const ClassRun& classRun, bool gold, bool fig2) {
+nlohmann::json classTable(const StudyConfig& config, const StudyRun& run, const ClassRun& classRun,
+                          bool gold, bool fig2) {
+  // Every bootstrap of the class draws from one seed: each comparison on the same links sees
+  // the same resamples (docs/study.md, "Seeds").
+  const std::uint64_t seed = bootstrapSeed(config.seed, std::uint64_t(classRun.linkClass));
   nlohmann::json rules = nlohmann::json::array();
   for (std::size_t r = 0; r < run.rules.size(); ++r)
-    rules.push_back(ruleEntry(run, r, classRun, gold, fig2));
+    rules.push_back(ruleEntry(run, r, classRun, gold, fig2, seed));
   return {{"links", classRun.links.size()},
           {"candidates", candidateCounts(classRun)},
           {"reference", classReference(run, classRun, gold, fig2)},
           {"rules", rules},
-          {"breakdown", studyBreakdown(classRun, run.rules.size(), gold, fig2, fullGaussIndex(run))},
+          {"breakdown", studyBreakdown(classRun, run.rules.size(), gold, fig2, fullGaussIndex(run), seed)},
           {"per_link", perLinkScores(classRun, gold, fig2)}};
 }
 
@@ -265,7 +281,9 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
   };
   if (config.sceneLinks) {
     table["scene_links"] = {{"final_active", run.sceneLinks},
-                            {"occluded_not_scored", run.sceneOccludedLinks}};
+                            {"occluded_not_scored", run.sceneOccludedLinks},
+                            {"solver_unoccluded", run.sceneSolverUnoccluded},
+                            {"solver_partial", run.sceneSolverPartial}};
   }
   if (options.gold) {
     std::map<std::string, int> methods, outerMethods;
@@ -289,7 +307,7 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
   }
   if (!fig2) {
     // Figure 1: one class (partial), flattened to the top level.
-    const nlohmann::json only = classTable(run, run.classes.front(), options.gold, false);
+    const nlohmann::json only = classTable(config, run, run.classes.front(), options.gold, false);
     table["links"] = only["links"];
     table["candidates"] = only["candidates"];
     table["rules"] = only["rules"];
@@ -300,7 +318,7 @@ nlohmann::json studyTable(const StudyConfig& config, const StudyOptions& options
   } else {
     nlohmann::json classes = nlohmann::json::object();
     for (const ClassRun& classRun : run.classes) {
-      classes[studyClassName(classRun.linkClass)] = classTable(run, classRun, options.gold, true);
+      classes[studyClassName(classRun.linkClass)] = classTable(config, run, classRun, options.gold, true);
     }
     table["classes"] = classes;
   }

@@ -168,7 +168,7 @@ def integrate(link, rule, degree=0, seed=0, trials=1):
     return _arrays(json.loads(result))
 
 
-def reference(link, degree=0, seed=0, replicates=10, gold=False, gold_method="exact",
+def reference(link, degree=0, seed=0, replicates=10, gold=False, gold_method="auto",
               gold_tolerance=1e-7):
     """The paper's reference of one link (and a gold), as `radquad reference` prints it."""
     result = _radquad.reference(_link_json(link), int(degree), _seed(seed), int(replicates),

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "experiments/study/study_metrics.h"
 
@@ -56,6 +55,9 @@ TEST(StudyMetrics, SummaryStatistics) {
   EXPECT_DOUBLE_EQ(s.max, 10.0);
   // Deviations -3,-2,-1,0,6: squares 50, sample variance 12.5, sem sqrt(12.5/5).
   EXPECT_DOUBLE_EQ(s.sem, std::sqrt(2.5));
+  // The largest link carries 10 of the sum 20.
+  EXPECT_DOUBLE_EQ(s.largestShare, 0.5);
+  EXPECT_EQ(summarize({0.0, 0.0}).largestShare, 0.0);
   EXPECT_EQ(summarize({}).count, 0u);
   EXPECT_EQ(summarize({7.0}).sem, 0.0);
 }
@@ -67,40 +69,6 @@ TEST(StudyMetrics, RelativeFrobeniusErrorIsTheNormOfTheDifferenceOverTheNorm) {
   EXPECT_DOUBLE_EQ(relativeFrobeniusError(estimate, reference), 0.2);
   // Scale-free: the same relative error for a coupling a thousand times larger.
   EXPECT_DOUBLE_EQ(relativeFrobeniusError(1000 * estimate, 1000 * reference), 0.2);
-}
-
-TEST(StudyMetrics, PairedRatioWithItsDeltaMethodInterval) {
-  // a = (1, 2, 3), b = (1, 1, 1): ratio 2, z = a - 2 b = (-1, 0, 1), sd 1, standard error
-  // 1 / sqrt(3), relative to the ratio 1 / (2 sqrt 3); the interval on the log:
-  // 2 exp(-+1.96 / (2 sqrt 3)).
-  const PairedRatio ratio = pairedRatio({1, 2, 3}, {1, 1, 1});
-  EXPECT_DOUBLE_EQ(ratio.ratio, 2.0);
-  EXPECT_NEAR(ratio.high, 2.0 * std::exp(1.96 / (2.0 * std::sqrt(3.0))), 1e-14);
-  EXPECT_NEAR(ratio.low, 2.0 * std::exp(-1.96 / (2.0 * std::sqrt(3.0))), 1e-14);
-  // Heavy tails: one huge pair keeps the interval positive.
-  const PairedRatio tail = pairedRatio({1, 1, 1, 1, 400}, {1, 1, 1, 1, 1});
-  EXPECT_GT(tail.low, 0.0);
-  EXPECT_LT(tail.low, tail.ratio);
-  // Proportional pairs: the ratio is exact and the interval has no width.
-  const PairedRatio exact = pairedRatio({2, 4, 6, 8}, {1, 2, 3, 4});
-  EXPECT_DOUBLE_EQ(exact.ratio, 2.0);
-  EXPECT_NEAR(exact.high - exact.low, 0.0, 1e-14);
-  // Coverage, measured: pairs b ~ U(1, 2), a = 0.7 b + noise; the 95% interval covers the
-  // true ratio of means 0.7 in about 95% of 2,000 suites of 200 links.
-  std::mt19937_64 random(5);
-  std::uniform_real_distribution<double> uniform(1.0, 2.0);
-  std::normal_distribution<double> noise(0.0, 0.3);
-  int covered = 0;
-  for (int suite = 0; suite < 2000; ++suite) {
-    std::vector<double> a, b;
-    for (int link = 0; link < 200; ++link) {
-      b.push_back(uniform(random));
-      a.push_back(0.7 * b.back() + noise(random));
-    }
-    const PairedRatio r = pairedRatio(a, b);
-    covered += r.low <= 0.7 && 0.7 <= r.high ? 1 : 0;
-  }
-  EXPECT_NEAR(covered / 2000.0, 0.95, 0.015);
 }
 
 }  // namespace

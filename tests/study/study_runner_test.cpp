@@ -198,7 +198,20 @@ TEST(StudyRunner, TheGoldNoiseShareIsTheGoldsOwnErrorOverTheRulesMeanError) {
   EXPECT_EQ(check["holds"].get<bool>(), worst <= 0.01);
 }
 
-StudyConfig sceneConfig(int unoccluded, int partial) {
+// Whether a corner of `patch` lies on the plane of `other` (within rounding), or corners lie on
+// both sides of it.
+bool meetsThePlaneOf(const Patch& patch, const Patch& other) {
+  const double scale = std::max(patch.edgeU.norm(), patch.edgeV.norm());
+  bool below = false, above = false;
+  for (const Eigen::Vector3d& corner : patch.corners()) {
+    const double height = other.normal.dot(corner - other.origin);
+    if (std::fabs(height) <= 1e-9 * scale) return true;
+    (height < 0.0 ? below : above) = true;
+  }
+  return below && above;
+}
+
+StudyConfig sceneConfig(int unoccluded, int partial, int singular = 0) {
   StudyConfig config = parseStudyConfig(
       nlohmann::json::parse(R"({"figure": "fig2", "seed": 5, "classes": {"partial": 1},
                               "rules": ["FullGauss", "Stratified"], "trials": 2,
@@ -206,25 +219,45 @@ StudyConfig sceneConfig(int unoccluded, int partial) {
                               "links": {"scene": "cornell", "degree": 0, "bf_eps": 0.5}})"),
       "scene");
   config.classes = {{StudyClass::unoccluded, unoccluded}, {StudyClass::partial, partial}};
+  if (singular > 0) config.classes.emplace_back(StudyClass::singular, singular);
   return config;
 }
 
 TEST(SceneLinks, ASuiteOfASolvesLinksIsTheSameWhateverTheThreadCount) {
-  const StudyConfig config = sceneConfig(5, 5);
+  const StudyConfig config = sceneConfig(5, 5, 2);
   std::string tables[2];
   for (const int threads : {1, 2}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-    const StudyRun run = runStudy(config, StudyOptions{});
-    ASSERT_EQ(run.classes.size(), 2u);
+    StudyOptions options;
+    options.keepDetails = true;
+    const StudyRun run = runStudy(config, options);
+    ASSERT_EQ(run.classes.size(), 3u);
+    EXPECT_EQ(run.sceneSolverUnoccluded + run.sceneSolverPartial + run.sceneOccludedLinks,
+              run.sceneLinks);
     for (const ClassRun& classRun : run.classes) {
-      EXPECT_EQ(classRun.links.size(), 5u);
-      EXPECT_EQ(classRun.generated, 5u);  // every scene link qualifies
+      EXPECT_EQ(classRun.links.size(), std::size_t(classRun.wanted));
+      // Every candidate drawn is counted under its own class, the class's own as its links.
+      std::uint64_t counted = 0;
+      for (const auto& [name, count] : classRun.candidatesByOwnClass) counted += count;
+      EXPECT_EQ(counted, classRun.generated);
+      EXPECT_EQ(classRun.candidatesByOwnClass.at(studyClassName(classRun.linkClass)),
+                classRun.links.size() + classRun.refusedGoldCandidates.size());
       for (const LinkRecord& link : classRun.links) {
         EXPECT_EQ(link.occluderKind, OccluderKind::scene);
-        // The solver proves a link unoccluded only when nothing is in its shaft: the
+        // A link is unoccluded when no occluder meets its shaft (exact, by clipping): the
         // reference's Embree rays, an independent visibility test, are then never blocked.
+        // A partial link's rays see between 5% and 95% of the pairs.
         if (classRun.linkClass == StudyClass::unoccluded) {
           EXPECT_EQ(link.visibleFraction, 1.0);
+        } else if (classRun.linkClass == StudyClass::partial) {
+          EXPECT_GT(link.visibleFraction, 0.05);
+          EXPECT_LT(link.visibleFraction, 0.95);
+        } else {
+          // Singular: the patches touch or one crosses the other's plane, so a corner of one
+          // lies on the other's plane or corners lie on both sides of it.
+          ASSERT_TRUE(link.detail);
+          EXPECT_TRUE(meetsThePlaneOf(link.detail->source, link.detail->receiver) ||
+                      meetsThePlaneOf(link.detail->receiver, link.detail->source));
         }
       }
     }
@@ -236,12 +269,11 @@ TEST(SceneLinks, ASuiteOfASolvesLinksIsTheSameWhateverTheThreadCount) {
 TEST(SceneLinks, ThePoolHoldsTheSolvesFinalLinksAsPatchesWithTheRestOfTheSceneAsOccluders) {
   const SceneLinkPool pool(SceneLinkOptions{{"cornell"}, 0, 0.5}, 5);
   const Scene scene = loadScene("cornell");
-  EXPECT_EQ(pool.size(StudyClass::unoccluded) + pool.size(StudyClass::partial) +
-                pool.occludedLinks(),
-            pool.totalLinks());
-  ASSERT_GT(pool.size(StudyClass::partial), 10u);
+  EXPECT_EQ(pool.size() + pool.occludedLinks(), pool.totalLinks());
+  EXPECT_EQ(pool.solverUnoccludedLinks() + pool.solverPartialLinks(), pool.size());
+  ASSERT_GT(pool.solverPartialLinks(), 10u);
   for (std::size_t k = 0; k < 10; ++k) {
-    const SceneLinkEntry entry = pool.entry(StudyClass::partial, k);
+    const SceneLinkEntry entry = pool.entry(k);
     EXPECT_NE(entry.receiverPatch, entry.sourcePatch);
     // Elements lie inside their patches: same plane, area at most the patch's.
     const Patch& patch = scene.patches[std::size_t(entry.receiverPatch)].patch;
@@ -258,14 +290,14 @@ TEST(SceneLinks, APoolOfTwoScenesHoldsBothScenesLinks) {
   const SceneLinkPool cornell(SceneLinkOptions{{"cornell"}, 0, 0.5}, 5);
   const SceneLinkPool slats(SceneLinkOptions{{"slats"}, 0, 0.5}, 5);
   const SceneLinkPool both(SceneLinkOptions{{"cornell", "slats"}, 0, 0.5}, 5);
-  for (StudyClass linkClass : {StudyClass::unoccluded, StudyClass::partial}) {
-    EXPECT_EQ(both.size(linkClass), cornell.size(linkClass) + slats.size(linkClass));
-  }
+  EXPECT_EQ(both.size(), cornell.size() + slats.size());
+  EXPECT_EQ(both.solverUnoccludedLinks(),
+            cornell.solverUnoccludedLinks() + slats.solverUnoccludedLinks());
   EXPECT_EQ(both.totalLinks(), cornell.totalLinks() + slats.totalLinks());
   const std::size_t patches[2] = {loadScene("cornell").patches.size(), loadScene("slats").patches.size()};
   int seen[2] = {0, 0};
-  for (std::size_t k = 0; k < both.size(StudyClass::partial); ++k) {
-    const SceneLinkEntry entry = both.entry(StudyClass::partial, k);
+  for (std::size_t k = 0; k < both.size(); ++k) {
+    const SceneLinkEntry entry = both.entry(k);
     ASSERT_TRUE(entry.scene == 0 || entry.scene == 1);
     ++seen[entry.scene];
     if (k < 20) {
@@ -299,6 +331,10 @@ TEST(SceneLinks, ConfigsRejectGeometryBesideSceneLinksAndNameBadScenes) {
             nlohmann::json::array({"cornell", "slats"}));
   EXPECT_THROW(parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
                          "rules": ["FullGauss"], "links": {"scene": "cornell", "degree": 4}})"),
+               InputError);
+  // Singular links are scene-derived only.
+  EXPECT_THROW(parse(R"({"figure": "fig2", "seed": 1, "classes": {"singular": 1},
+                         "rules": ["FullGauss"]})"),
                InputError);
   StudyConfig config = parse(R"({"figure": "fig1", "seed": 1, "classes": {"partial": 1},
                                  "rules": ["FullGauss"], "links": {"scene": "no_such_scene"}})");
