@@ -14,9 +14,10 @@ namespace radquad {
 // the oracle, the iteration and the budgets ("min_area" as the solver resolved it).
 nlohmann::json solverOptionsJson(const Solver& solver);
 
-// The solve's statistics: kernel evaluations (all, recomputations', composite rules', the
-// kernel check's), coupling computations, links by class, rays, elements, iterations,
-// convergence and its failure, form factor sums, times and the coupling store's memory.
+// The solve's statistics: kernel evaluations of the product rules (all, recomputations', the
+// kernel check's), near-field links and points, coupling computations, links by class, rays,
+// elements, iterations (with the final change, error estimate and extrapolations),
+// convergence and its failure, receiver sums, times and the coupling store's memory.
 // Keys that change from run to run: kSolveTimingKeys.
 nlohmann::json solveStatisticsJson(const Solver& solver);
 
@@ -25,8 +26,8 @@ inline const char* const kSolveTimingKeys[] = {"elapsed_seconds", "coupling_seco
                                                "kernel_evaluations_per_second"};
 
 // A solution against the fixed rules' solution of the same scene: the relative L2 difference,
-// the largest per-patch difference, the fixed rules' evaluations (all, composite rules') and
-// the ratios of evaluations (all, over product-rule links, over composite-rule links).
+// the largest per-patch difference, the fixed rules' kernel evaluations and near-field points,
+// and the ratio of kernel evaluations (the near field integrates alike with either rule choice).
 nlohmann::json comparisonJson(const Solver& solver, const Solver& fixed);
 
 // {"value": relative difference, "patch": name, "channel": "red" | "green" | "blue"}.

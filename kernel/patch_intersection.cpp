@@ -182,6 +182,19 @@ double patchDistance(const Patch& a, const Patch& b) {
   return best;
 }
 
+double segmentToPatchDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Patch& patch) {
+  const double ha = patch.normal.dot(a - patch.origin), hb = patch.normal.dot(b - patch.origin);
+  if ((ha < 0.0) != (hb < 0.0)) {
+    const Eigen::Vector2d uv = patch.parametersOf(a + (ha / (ha - hb)) * (b - a));
+    if (uv.x() >= 0.0 && uv.x() <= 1.0 && uv.y() >= 0.0 && uv.y() <= 1.0) return 0.0;
+  }
+  const Corners c = patch.corners();
+  double best = std::min(pointToPatch(a, patch), pointToPatch(b, patch));
+  for (int k = 0; k < 4; ++k) best = std::min(best, segmentToSegment(a, b, c[k], c[(k + 1) % 4]));
+  return best;
+}
+
 double nearnessRatio(const Patch& a, const Patch& b) {
   const Patch& smaller = a.area <= b.area ? a : b;
   return patchDistance(a, b) / std::min(smaller.edgeU.norm(), smaller.edgeV.norm());

@@ -40,6 +40,11 @@ bool cutByTangentPlane(const Patch& receiver, const Patch& source);
 // of the distances from each one's corners to the other and between their edges.
 double patchDistance(const Patch& a, const Patch& b);
 
+// The Euclidean distance between the segment [a, b] and a parallelogram (0 when the segment
+// touches or crosses it).
+double segmentToPatchDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Patch& patch);
+
 // A link is near-singular when its patches are closer than kNearSingularRatio times the
 // shorter side of the smaller one: the kernel 1/r^2 then varies over the link far faster than
 // any fixed product rule resolves (opposed unit squares 0.01 apart: FullGauss gives a form

@@ -11,7 +11,9 @@
 #include <utility>
 
 #include "kernel/progress_throttle.h"
+#include "radiosity/link_integration.h"
 #include "radiosity/solver_impl.h"
+#include "reference/point_polygon_form_factor.h"
 
 namespace radquad {
 
@@ -60,14 +62,16 @@ void Solver::createInitialLinks() {
 }
 
 // Classifies the links in `created` whose parent was partial (or that are top-level):
-// children of an unoccluded link are unoccluded (a sub-shaft lies inside the shaft).
+// children of an unoccluded link are unoccluded (a sub-shaft lies inside the shaft). Marks
+// every one of them that is near-field (link_integration.h).
 void Solver::classifyLinks(HugePageVector<int>& created) {
   HugePageVector<std::uint64_t> rays(created.size(), 0);
   tbb::parallel_for(std::size_t(0), created.size(), [&](std::size_t k) {
     SolverLink& link = links_[std::size_t(created[k])];
-    if (link.visibility != LinkClass::kPartial) return;
     const Element& receiver = (*hierarchy_)[link.receiver];
     const Element& source = (*hierarchy_)[link.source];
+    link.nearField = options_.nearField && nearField(receiver.geometry, source.geometry);
+    if (link.visibility != LinkClass::kPartial) return;
     const bool topLevel = receiver.parent < 0 && source.parent < 0;
     Classification result =
         impl_->classifier.classify(receiver.geometry, receiver.patch, source.geometry, source.patch,
@@ -106,17 +110,19 @@ double discFormFactor(const Patch& receiver, const Eigen::Vector3d& x, const Pat
 }  // namespace
 
 // The BF oracle (Hanrahan, Salzman and Aupperle 1991, section 4.2): the form factors between
-// the elements estimated as those of a disc of the same area, from their centres, times the
-// source's mean radiosity (largest channel); partial links are less certain.
-// A link cut by a tangent plane (cutByTangentPlane) may exchange energy where its centres
-// see none (a block face and the floor under it, a face and a light whose centre lies behind
-// the face's plane): its estimate is the largest over the 3 x 3 points (corners, edge
-// midpoints, centre) of each element. Any pair of a receiver point in front of the source's
-// plane and a source point in front of the receiver's has both cosines positive, and every
-// part of an element in front of a plane that cuts it contains a corner, so the estimate is
-// positive whenever the link can carry energy. Without this such links were never refined and
-// kept one coarse rule across the discontinuity (cornell's block faces converged to up to 10%
-// too dark, whatever --bf-eps).
+// the elements, times the source's mean radiosity (largest channel); partial links are less
+// certain. Elements apart (not near-field: link_integration.h) estimate them as those of a
+// disc of the same area, from their centres. Near elements estimate them by the largest exact
+// point form factor (Lambert's formula, the clamped cosines honoured: reference/
+// point_polygon_form_factor.h) from the 3 x 3 points (corners, edge midpoints, centre) of each
+// element to the other. From the centres alone such links were underestimated by orders of
+// magnitude: a small receiver under a large source whose centre lies far off to one side (an
+// 8 cm square 4 cm under a 3.7 x 5.3 m ceiling: 0.0007 for a form factor near 1), or a link
+// cut by a tangent plane (a block face and the floor under it), whose centres may see nothing
+// of each other; they were accepted coarse, and the receiver took the mean radiosity of a
+// source far larger than the region it sees. Every part of an element in front of a plane
+// that cuts it contains a corner, so the estimate is positive whenever the link can carry
+// energy.
 double Solver::oracleFormFactor(const SolverLink& link) const {
   const Element& receiver = (*hierarchy_)[link.receiver];
   const Element& source = (*hierarchy_)[link.source];
@@ -124,14 +130,12 @@ double Solver::oracleFormFactor(const SolverLink& link) const {
   if (larger.geometry.area <= minArea_ || larger.level >= options_.maxLevel) return 0.0;
   const Patch& r = receiver.geometry;
   const Patch& s = source.geometry;
-  if (!cutByTangentPlane(r, s)) return discFormFactor(r, r.centre(), s, s.centre());
+  if (!link.nearField) return discFormFactor(r, r.centre(), s, s.centre());
   double formFactor = 0.0;
   for (int a = 0; a < 9; ++a) {
-    const Eigen::Vector3d x = r.pointAt(0.5 * (a / 3), 0.5 * (a % 3));
-    for (int b = 0; b < 9; ++b) {
-      formFactor =
-          std::max(formFactor, discFormFactor(r, x, s, s.pointAt(0.5 * (b / 3), 0.5 * (b % 3))));
-    }
+    const double u = 0.5 * (a / 3), v = 0.5 * (a % 3);
+    formFactor = std::max({formFactor, pointToPatchFormFactor(r.pointAt(u, v), r.normal, s),
+                           pointToPatchFormFactor(s.pointAt(u, v), s.normal, r)});
   }
   return formFactor;
 }
@@ -190,6 +194,13 @@ bool Solver::refinementPass() {
     HugePageVector<int> choices(pending.size());
     tbb::parallel_for(std::size_t(0), pending.size(), [&](std::size_t k) {
       SolverLink& link = links_[std::size_t(pending[k])];
+      // Links marked by the receiver-sum guard (form_factor_check.cpp) split at their
+      // receivers; the others where the oracle says.
+      const std::size_t index = std::size_t(pending[k]);
+      if (wave == 1 && index < forcedSplit_.size() && forcedSplit_[index]) {
+        choices[k] = forcedSplit_[index] == kSplitReceiver ? 0 : 1;
+        return;
+      }
       choices[k] = examined(link) && oracleSaysRefine(link) ? splitSide(link) : -1;
     });
     HugePageVector<int> created;
@@ -250,6 +261,7 @@ bool Solver::refinementPass() {
     pending = std::move(created);
     if (!budgetExceeded_.empty()) break;
   }
+  forcedSplit_.clear();
   return refined;
 }
 

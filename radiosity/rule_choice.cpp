@@ -11,6 +11,7 @@
 #include "quadrature/random/philox.h"
 #include "radiosity/gauss_tables.h"
 #include "radiosity/kernel_curvature.h"
+#include "radiosity/link_integration.h"
 #include "radiosity/solver.h"
 #include "radiosity/solver_impl.h"
 
@@ -73,12 +74,13 @@ GaussPointCounts Solver::chooseRule(const SolverLink& link,
                                       std::uint64_t* checkEvaluations) const {
   const int n = options_.degree + 1;
   // Fixed rules: d+1 points per axis, but 2 at degree 0, where the midpoint rule overestimates
-  // peaked kernels (the white furnace at degree 0 came out 9% bright with it, 3% at
-  // --bf-eps 0.05; 0.8% with 2 points).
-  const int fixed = std::max(n, 2);
-  GaussPointCounts rule = {fixed, fixed, fixed, fixed};
+  // peaked kernels and bright scenes create energy, and 3 where the elements are moderately
+  // near (link_integration.h), where 2 points underestimate the kernel and a whole scene
+  // darkens (radiosity/README.md, "Couplings").
   const Patch& r = (*hierarchy_)[link.receiver].geometry;
   const Patch& s = (*hierarchy_)[link.source].geometry;
+  const int fixed = std::max(n, separationRatio(r, s) < kModeratelyNearFactor ? 3 : 2);
+  GaussPointCounts rule = {fixed, fixed, fixed, fixed};
   if (options_.rules != RuleChoice::kFixed) {
     // Figure 4 from the source's points of this pass (updateSourcePoints, copied to
     // link.coupling.sourcePoints by computeCouplings), then its visibility step.

@@ -19,6 +19,7 @@
 #include "radiosity/gauss_tables.h"
 #include "radiosity/kernel_curvature.h"
 #include "radiosity/link_integration.h"
+#include "radiosity/near_field.h"
 #include "radiosity/solver_impl.h"
 
 namespace radquad {
@@ -34,25 +35,32 @@ Solver::Solver(const Scene& scene, SolverOptions options)
     emittedPower += patch.emission.maxCoeff() * patch.patch.area;
   }
   radiosityScale_ = emittedPower / totalArea;
+  for (const ScenePatch& patch : scene.patches) {
+    for (int c = 0; c < 3; ++c) {
+      largestReflectance_[std::size_t(c)] =
+          std::max(largestReflectance_[std::size_t(c)], patch.reflectance[c]);
+    }
+  }
   minArea_ = options_.minArea > 0.0 ? options_.minArea : 1e-4 * largestArea;
 }
 
 Solver::~Solver() = default;
 
-void Solver::computeCouplings() {
+std::size_t Solver::computeCouplings() {
   const auto start = std::chrono::steady_clock::now();
   updateSourcePoints();
   const std::uint64_t checksBefore = statistics_.ruleCheckEvaluations;
   HugePageVector<int> todo;
   HugePageVector<GaussPointCounts> rules;
   std::vector<bool> again;
-  std::vector<bool> composites;
   // The links that may need a (new) coupling: found in parallel, block by block, and taken in
-  // link order. After the first passes, with fixed rules, only new links are.
+  // link order. After the first passes, with fixed rules, only new links are; a near-field
+  // link's coupling does not depend on a rule, so it is integrated once.
   const auto mayNeedCoupling = [&](const SolverLink& link) {
     if (!link.active) return false;
     if (link.coupling.computed) {
-      return sourcePoints_[std::size_t(link.source)] != link.coupling.sourcePoints;
+      return !link.nearField &&
+             sourcePoints_[std::size_t(link.source)] != link.coupling.sourcePoints;
     }
     // A link whose source has no radiosity yet carries nothing: it is integrated once its
     // source has some (with every rule choice), so that the adaptive choice sees the
@@ -62,7 +70,9 @@ void Solver::computeCouplings() {
   for (const int k : linksWhere(links_, mayNeedCoupling)) {
     SolverLink& link = links_[std::size_t(k)];
     link.coupling.sourcePoints = sourcePoints_[std::size_t(link.source)];
-    const GaussPointCounts rule = chooseRule(link, &statistics_.ruleCheckEvaluations);
+    const GaussPointCounts rule = link.nearField
+                                      ? GaussPointCounts{}
+                                      : chooseRule(link, &statistics_.ruleCheckEvaluations);
     if (link.coupling.computed && rule == link.coupling.rule) continue;
     if (link.coupling.computed) ++statistics_.recomputations;
     todo.push_back(k);
@@ -73,45 +83,49 @@ void Solver::computeCouplings() {
   if (!todo.empty()) impl_->gatherCurrent = false;
   const auto chosen = std::chrono::steady_clock::now();
   // Storage for the links' kept columns (untimed: allocation, not integration): a product
-  // rule keeps min(Su, n) x min(Sv, n) columns, a composite rule all n^2
+  // rule keeps min(Su, n) x min(Sv, n) columns, a near-field link all n^2
   // (source_projection.h). A link whose width changes moves to a slot of the new width.
   const int n = options_.degree + 1;
   for (std::size_t k = 0; k < todo.size(); ++k) {
     SolverLink& link = links_[std::size_t(todo[k])];
-    const bool composite =
-        LinkIntegrator::composite((*hierarchy_)[link.receiver].geometry,
-                                  (*hierarchy_)[link.source].geometry, options_.singularDepth);
     const std::array<int, 2> kept =
-        composite ? std::array<int, 2>{n, n}
-                  : std::array<int, 2>{std::min(rules[k][2], n), std::min(rules[k][3], n)};
+        link.nearField ? std::array<int, 2>{n, n}
+                       : std::array<int, 2>{std::min(rules[k][2], n), std::min(rules[k][3], n)};
     if (link.coupling.slot >= 0 && kept != link.coupling.gatherPoints) {
       impl_->couplings.release(keptColumns(link), std::exchange(link.coupling.slot, -1));
     }
     link.coupling.gatherPoints = kept;
-    composites.push_back(composite);
     if (link.coupling.slot < 0) link.coupling.slot = impl_->couplings.allocate(keptColumns(link));
   }
   const auto stored = std::chrono::steady_clock::now();
-  HugePageVector<std::uint64_t> rays(todo.size(), 0);
+  HugePageVector<std::uint64_t> rays(todo.size(), 0), points(todo.size(), 0);
+  const std::vector<int> noCandidates;
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t k) {
     SolverLink& link = links_[std::size_t(todo[k])];
     const GaussPointCounts& rule = rules[k];
+    const bool partial = link.visibility == LinkClass::kPartial;
     const Link kernelLink{(*hierarchy_)[link.receiver].geometry,
                           (*hierarchy_)[link.source].geometry,
-                          link.visibility == LinkClass::kPartial ? &impl_->occluders : nullptr};
+                          partial ? &impl_->occluders : nullptr};
     const int functions = n * n;
     Eigen::MatrixXd& whole = impl_->scratch.local();
     whole.resize(functions, functions);
-    const LinkIntegrationCounts counts = impl_->integrators.local().integrate(
-        kernelLink, rule, impl_->tables, options_.singularDepth, composites[k],
-        Eigen::Map<Eigen::MatrixXd>(whole.data(), functions, functions));
-    // A product rule's coupling keeps the columns of its source points' orders only; a
-    // composite one keeps every column, those of the orders its rule drops zeroed when they
-    // are truncated (source_projection.h).
-    if (link.coupling.gatherPoints != std::array<int, 2>{n, n}) {
-      impl_->projection.compact(link.coupling.gatherPoints[0], link.coupling.gatherPoints[1], whole.data());
-    } else if (rule[2] < n || rule[3] < n) {
-      impl_->projection.dropOrders(std::min(rule[2], n), std::min(rule[3], n), whole.data());
+    const Eigen::Map<Eigen::MatrixXd> coupling(whole.data(), functions, functions);
+    LinkIntegrationCounts counts;
+    if (link.nearField) {
+      points[k] = impl_->nearField.local()
+                      .integrate(kernelLink, impl_->occluders.polygons(),
+                                 partial ? link.candidates : noCandidates, options_.degree,
+                                 coupling)
+                      .points;
+    } else {
+      counts = impl_->integrators.local().integrate(kernelLink, rule, impl_->tables, coupling);
+      // A product rule's coupling keeps the columns of its source points' orders only
+      // (source_projection.h).
+      if (link.coupling.gatherPoints != std::array<int, 2>{n, n}) {
+        impl_->projection.compact(link.coupling.gatherPoints[0], link.coupling.gatherPoints[1],
+                                  whole.data());
+      }
     }
     const Eigen::Index count = Eigen::Index(functions) * keptColumns(link);
     Eigen::Map<Eigen::VectorXf>(impl_->couplings.data(keptColumns(link), link.coupling.slot), count) =
@@ -127,15 +141,15 @@ void Solver::computeCouplings() {
       statistics_.recomputationEvaluations += links_[std::size_t(todo[k])].coupling.kernelEvaluations;
     }
     statistics_.integrationRays += rays[k];
-    if (composites[k]) {
-      statistics_.compositeEvaluations += links_[std::size_t(todo[k])].coupling.kernelEvaluations;
-    }
+    statistics_.nearFieldPoints += points[k];
+    statistics_.nearFieldLinks += points[k] > 0 ? 1 : 0;
   }
   statistics_.kernelEvaluations += statistics_.ruleCheckEvaluations - checksBefore;
   statistics_.couplingComputations += todo.size();
   statistics_.couplingSeconds +=
       std::chrono::duration<double>(chosen - start).count() +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stored).count();
+  return todo.size();
 }
 
 // The elements' lists as a pass over every link would make them (each element's active
@@ -162,27 +176,6 @@ void Solver::updateElementLinks() {
   }
   listedLinks_ = links_.size();
   splitSinceListed_.clear();
-}
-
-// Returns the relative L2 change of the patch-level radiosity (the roots' coefficients are
-// the projections of B on each patch's own basis; their Euclidean norm is the L2 norm of
-// that projection over the surface).
-double Solver::pushPull() {
-  const std::size_t patches = scene_.patches.size();
-  std::vector<double> change(patches), norm(patches);
-  tbb::parallel_for(std::size_t(0), patches, [&](std::size_t p) {
-    const Coefficients before = (*hierarchy_)[hierarchy_->root(int(p))].radiosity;
-    hierarchy_->pushPull(int(p));
-    const Coefficients& after = (*hierarchy_)[hierarchy_->root(int(p))].radiosity;
-    change[p] = (after - before).squaredNorm();
-    norm[p] = after.squaredNorm();
-  });
-  double totalChange = 0.0, totalNorm = 0.0;
-  for (std::size_t p = 0; p < patches; ++p) {
-    totalChange += change[p];
-    totalNorm += norm[p];
-  }
-  return totalNorm > 0.0 ? std::sqrt(totalChange / totalNorm) : 0.0;
 }
 
 void Solver::countLinks() {
@@ -215,6 +208,28 @@ std::string Solver::divergence() const {
   return {};
 }
 
+// A converged solution that creates energy or has negative radiosity is a failure.
+void Solver::checkSolution() {
+  const FormFactorSums& sums = statistics_.formFactorSums;
+  char text[200];
+  if (sums.violations > 0) {
+    std::snprintf(text, sizeof text,
+                  "%zu leaf elements receive more than 1 + %g of a uniform radiosity, which "
+                  "refinement cannot lower; the largest, %.4f, on ",
+                  sums.violations, kFormFactorSumTolerance, sums.maximum);
+    statistics_.failure = text + describeElement(sums.element);
+  }
+  for (std::size_t p = 0; p < scene_.patches.size() && statistics_.failure.empty(); ++p) {
+    const Eigen::Vector3d mean = (*hierarchy_)[hierarchy_->root(int(p))].meanRadiosity();
+    // Rounding can leave an unlit patch a hair below 0.
+    if (mean.minCoeff() < -1e-9 * radiosityScale_) {
+      std::snprintf(text, sizeof text, " has a negative mean radiosity, %.6g", mean.minCoeff());
+      statistics_.failure = describePatch(scene_, p) + text;
+    }
+  }
+  statistics_.converged = statistics_.failure.empty();
+}
+
 bool Solver::memoryExceeded(const char* phase) {
   if (!budgetExceeded_.empty()) return true;
   const std::size_t resident = residentBytes();
@@ -239,11 +254,19 @@ void Solver::solve() {
   createInitialLinks();
   // Hanrahan, Salzman and Aupperle's scheme: refine, iterate until the radiosity settles,
   // refine again with the settled radiosity; done when a refinement pass splits nothing.
-  double change = std::numeric_limits<double>::infinity();
+  double error = std::numeric_limits<double>::infinity();
   std::size_t active = 0;  // active links, for the progress reports
   for (int iteration = 1; iteration <= options_.maxIterations; ++iteration) {
-    const bool recheck = iteration == 1 || change < options_.tolerance;
-    const bool refined = budgetExceeded_.empty() && recheck && refinementPass();
+    // Refinement is checked once the radiosity has settled, and at once when the iterations
+    // show couplings that create energy (settleEstimate): refining them is the remedy.
+    const bool recheck = iteration == 1 || error < options_.tolerance || energyCreated_;
+    bool refined = budgetExceeded_.empty() && recheck && refinementPass();
+    // Once the oracle splits nothing more, the leaves whose receiver sums exceed 1 have the
+    // links received by their ancestors split (form_factor_check.cpp).
+    if (recheck && !refined && iteration > 1 && budgetExceeded_.empty() &&
+        markSumViolations() > 0) {
+      refined = refinementPass();
+    }
     if (!budgetExceeded_.empty()) {
       statistics_.failure = budgetExceeded_;
       break;
@@ -254,15 +277,19 @@ void Solver::solve() {
     }
     // The elements' lists of active links change only when links are created or split.
     if (iteration == 1 || refined) updateElementLinks();
-    computeCouplings();
+    if (computeCouplings() > 0 || refined) restartIterationHistory();
     if (memoryExceeded("the coupling integration")) {
       statistics_.failure = budgetExceeded_;
       break;
     }
+    snapshotRadiosity();
     gather();
-    change = pushPull();
+    const std::array<double, 3> changes = pushPull();
+    const double change = *std::max_element(changes.begin(), changes.end());
+    error = settleEstimate(changes);
     statistics_.iterations = iteration;
     statistics_.finalChange = change;
+    statistics_.finalError = error;
     // With physical couplings (form factor sums <= 1) no radiosity exceeds the largest
     // emission over (1 - the largest reflectance); ten times that bound, or a value that is
     // not finite, is divergence.
@@ -284,10 +311,12 @@ void Solver::solve() {
   if (!statistics_.converged && statistics_.failure.empty()) {
     statistics_.failure = "no convergence within " + std::to_string(options_.maxIterations) +
                           " iterations (last relative change " +
-                          std::to_string(statistics_.finalChange) + ")";
+                          std::to_string(statistics_.finalChange) + ", estimated error " +
+                          std::to_string(statistics_.finalError) + ")";
   }
   updateElementLinks();
   checkFormFactorSums();
+  if (statistics_.converged) checkSolution();
   countLinks();
   statistics_.elapsedSeconds = elapsed();
   // The solution is in the hierarchy; the couplings (about 1 GiB for a cubic cornell solve)

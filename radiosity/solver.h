@@ -83,10 +83,10 @@ struct SolverOptions {
   // refinement and after every integration pass; the solve fails with a message naming the
   // budget when it is exceeded.
   std::size_t maxMemoryBytes = defaultMemoryBudget();
-  // Links between touching elements (a shared edge or corner: the kernel is singular there)
-  // are integrated by splitting both elements into quadrants, recursively to this depth,
-  // where sub-elements still touch; the link's rule is applied to every piece.
-  int singularDepth = 3;
+  // Links between near elements (touching, cut by the other's plane, or closer than their
+  // sizes) are integrated in the near field (near_field.h); false integrates them with their
+  // product rules like the others, to measure what the near field changes.
+  bool nearField = true;
   // The base seed of the links' own generators (adaptive rules on partial links).
   std::uint64_t seed = 0;
   // Called after every iteration (for progress reports); may be empty.
@@ -154,18 +154,22 @@ struct SolverLink {
   // precision cannot hold it), 0 where the larger element may not be split
   // (Solver::oracleSaysRefine).
   float oracleFormFactor = -1.0f;
+  // Whether the elements are near each other (link_integration.h, nearField): the coupling
+  // is integrated in the near field, and the oracle estimates from exact point form factors.
+  bool nearField = false;
   std::vector<int> candidates;   // candidate occluders (patch indices)
   LinkCoupling coupling;
 };
 
-// The largest form factor sum over the elements (form_factor_check.cpp): at most
-// 1 for exact couplings. Elements whose sum exceeds
-// 1 + kFormFactorSumTolerance are counted as violations and reported.
+// The leaves' receiver sums (form_factor_check.cpp): the mean irradiance the couplings deliver
+// to a leaf from a radiosity of 1 everywhere, at most 1 for exact couplings and refinement.
+// The solve refines a leaf above 1 + kFormFactorSumTolerance, and fails when it cannot.
 inline constexpr double kFormFactorSumTolerance = 0.05;
 struct FormFactorSums {
   double maximum = 0.0;
-  int patch = -1;              // the patch of the element with the largest sum
-  std::size_t violations = 0;  // elements above 1 + kFormFactorSumTolerance
+  int patch = -1;              // the patch of the leaf with the largest sum
+  int element = -1;            // that leaf
+  std::size_t violations = 0;  // leaves above 1 + kFormFactorSumTolerance
 };
 
 // The solver's links: millions of them at degree 2, in huge pages (huge_pages.h).
@@ -180,10 +184,11 @@ struct SolveStatistics {
   std::uint64_t couplingComputations = 0;      // links integrated (first time or again)
   std::uint64_t recomputations = 0;            // links integrated again with a new rule
   std::uint64_t recomputationEvaluations = 0;  // kernel evaluations of those (included above)
-  // Kernel evaluations of links integrated with composite rules (touching elements, or one
-  // cut by the other's plane: link_integration.h), included above. The rest went to links
-  // integrated with one product rule.
-  std::uint64_t compositeEvaluations = 0;
+  // Links integrated in the near field (touching, cut by the other's plane, or near:
+  // near_field.h) and their receiver points, each with its exact inner integrals; not kernel
+  // evaluations, which count the product rules' points.
+  std::uint64_t nearFieldLinks = 0;
+  std::uint64_t nearFieldPoints = 0;
   // Unoccluded kernel evaluations of the adaptive rules' kernel check (included above).
   std::uint64_t ruleCheckEvaluations = 0;
   std::uint64_t classificationRays = 0;
@@ -193,6 +198,10 @@ struct SolveStatistics {
   int iterations = 0;
   bool converged = false;
   double finalChange = 0.0;
+  // The estimated relative error of the patch-level radiosity when the iterations stopped
+  // (iteration.cpp), and how often they were extrapolated along their slowest mode.
+  double finalError = 0.0;
+  int extrapolations = 0;
   double elapsedSeconds = 0.0;
   // Wall time spent choosing rules and integrating couplings (the part the rule choice
   // changes; the rest is refinement, visibility classification, the storage of the coupling
@@ -228,6 +237,20 @@ class Solver {
   void createInitialLinks();
   // Fills statistics_.formFactorSums from the couplings (form_factor_check.cpp).
   void checkFormFactorSums();
+  // Per element, the mean over it of the irradiance the couplings deliver from a radiosity of
+  // 1 on every surface (form_factor_check.cpp).
+  std::vector<double> receiverSums() const;
+  // Marks, in forcedSplit_, the active links received by the ancestors of every leaf whose
+  // receiver sum exceeds 1 + kFormFactorSumTolerance (the next refinement pass splits them at
+  // their receivers) and the leaf's own links (split at their sources where those can be
+  // split, else at the leaf); returns how many it marked.
+  std::size_t markSumViolations();
+  std::vector<char> forcedSplit_;  // 0, kSplitReceiver or kSplitSource per link
+  static constexpr char kSplitReceiver = 1, kSplitSource = 2;
+  // Fails a converged solve whose leaves still create energy, or with a negative patch mean.
+  void checkSolution();
+  // The patch of element e (describePatch) and where the element lies on it.
+  std::string describeElement(int e) const;
   // A description of the first patch whose mean radiosity is not finite or far beyond the
   // physical bound; empty when there is none.
   std::string divergence() const;
@@ -249,12 +272,28 @@ class Solver {
   // by computeCouplings); adds the kernel check's evaluations to *checkEvaluations.
   GaussPointCounts chooseRule(const SolverLink& link, std::uint64_t* checkEvaluations) const;
   void updateSourcePoints();
-  void computeCouplings();
+  // Returns the number of links integrated (0: the system is unchanged).
+  std::size_t computeCouplings();
   void layOutProjections();
   void projectSources();
   void gather();
   void buildGatherTable();
-  double pushPull();
+  // Jacobi's step, error estimate and extrapolation (iteration.cpp).
+  void snapshotRadiosity();
+  std::array<double, 3> pushPull();
+  // Records a step's change per channel; returns the estimated relative error of the
+  // patch-level radiosity (infinity while it cannot be estimated), after extrapolating along
+  // the slowest mode where its rate has settled.
+  double settleEstimate(const std::array<double, 3>& change);
+  void restartIterationHistory();
+  // The absolute patch-level change per channel of each step since the system last changed.
+  std::vector<std::array<double, 3>> iterationChanges_;
+  std::array<double, 3> lastAbsoluteChange_{};
+  std::array<double, 3> largestReflectance_{};  // per channel, over the patches
+  // Set by settleEstimate when the slowest mode decays more slowly than any reflectance
+  // allows: couplings that create energy.
+  bool energyCreated_ = false;
+  std::vector<double> previousRadiosity_;  // every element's radiosity before the last step
   // The elements' lists of active links (Element::links, in link order), brought up to date
   // after the initial linking or a refinement pass (the links it split leave their receivers'
   // lists, the active links it created join theirs).

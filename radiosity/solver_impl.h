@@ -17,6 +17,7 @@
 #include "radiosity/coupling_store.h"
 #include "radiosity/gauss_tables.h"
 #include "radiosity/link_integration.h"
+#include "radiosity/near_field.h"
 #include "radiosity/solver.h"
 #include "radiosity/source_projection.h"
 
@@ -43,6 +44,7 @@ struct Solver::Impl {
   GaussTables tables;
   VisibilityClassifier classifier;
   tbb::enumerable_thread_specific<LinkIntegrator> integrators;
+  tbb::enumerable_thread_specific<NearFieldIntegrator> nearField;
   CouplingStore couplings;  // each link's kept columns of K (rows receiver functions)
   SourceProjection projection;
   tbb::enumerable_thread_specific<Eigen::MatrixXd> scratch;  // a link's whole K

@@ -89,19 +89,3 @@ void SourceProjection::compact(int pointsU, int pointsV, double* coupling) const
 }
 
 }  // namespace radquad
-
-namespace radquad {
-
-void SourceProjection::dropOrders(int pointsU, int pointsV, double* coupling) const {
-  if (dropped_ == DroppedOrders::kAliased) return;
-  const int orders = degree_ + 1;
-  const std::size_t functions = std::size_t(orders * orders);
-  for (int p = 0; p < orders; ++p) {
-    for (int q = 0; q < orders; ++q) {
-      if (p < pointsU && q < pointsV) continue;
-      std::memset(coupling + std::size_t(p * orders + q) * functions, 0, functions * sizeof(double));
-    }
-  }
-}
-
-}  // namespace radquad

@@ -32,9 +32,8 @@
 //   rules from 2.8% to 1.8% at the same cost.
 //
 // Both hold for a product rule on the whole source element, partially occluded or not
-// (visibility is part of the kernel); not for the composite rules of touching elements,
-// whose source points lie in the pieces (those keep all F columns; dropOrders() zeroes the
-// dropped orders' columns there).
+// (visibility is part of the kernel). Near-field links (near_field.h) integrate the source
+// exactly, whatever the rule: they keep every column and gather the whole source.
 #pragma once
 
 #include <vector>
@@ -64,11 +63,6 @@ class SourceProjection {
   // Keeps the columns (p, q), p < pointsU, q < pointsV, of a (d+1)^2 x (d+1)^2 column-major
   // coupling, moved to the front in the order p * pointsV + q (in place).
   void compact(int pointsU, int pointsV, double* coupling) const;
-
-  // Truncated: zeroes the columns (p, q) with p >= pointsU or q >= pointsV of a
-  // (d+1)^2 x (d+1)^2 column-major coupling that keeps every column (a composite rule's).
-  // Aliased: leaves it as it is.
-  void dropOrders(int pointsU, int pointsV, double* coupling) const;
 
  private:
   int degree_;

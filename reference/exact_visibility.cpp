@@ -18,29 +18,47 @@ constexpr double kShaftAreaRounding = 1e-12;
 
 ExactVisibility::ExactVisibility(const Link& link, ShadowUnion method)
     : link_(link), method_(method) {
-  const Patch& source = link.source;
+  setDuals();
+  if (link.hasOccluders()) cull(link.occluders->polygons(), nullptr);
+}
+
+ExactVisibility::ExactVisibility(const Link& link,
+                                 const std::vector<std::vector<Eigen::Vector3d>>& polygons,
+                                 const std::vector<int>& candidates, ShadowUnion method)
+    : link_(link), method_(method) {
+  setDuals();
+  cull(polygons, &candidates);
+}
+
+void ExactVisibility::setDuals() {
+  const Patch& source = link_.source;
   const double uu = source.edgeU.dot(source.edgeU), uv = source.edgeU.dot(source.edgeV),
                vv = source.edgeV.dot(source.edgeV);
   const double determinant = uu * vv - uv * uv;
   dualU_ = (vv * source.edgeU - uv * source.edgeV) / determinant;
   dualV_ = (uu * source.edgeV - uv * source.edgeU) / determinant;
-  if (!link.hasOccluders()) return;
+}
+
+void ExactVisibility::cull(const std::vector<std::vector<Eigen::Vector3d>>& polygons,
+                           const std::vector<int>* indices) {
   std::vector<Eigen::Vector3d> corners;
-  for (const auto& c : link.receiver.corners()) corners.push_back(c);
-  for (const auto& c : link.source.corners()) corners.push_back(c);
+  for (const auto& c : link_.receiver.corners()) corners.push_back(c);
+  for (const auto& c : link_.source.corners()) corners.push_back(c);
   double scale = 0.0;
   for (const auto& c : corners) scale = std::max(scale, c.cwiseAbs().maxCoeff());
   const std::vector<Eigen::Vector4d> planes = convexHullPlanes(corners);
   // The shaft's interior as half-spaces normal . p + offset >= 0: inside every face of the hull,
   // in front of both patches (where the kernel is positive).
   for (const auto& plane : planes) shaftPlanes_.push_back(-plane);
-  for (const Patch* patch : {&link.receiver, &link.source}) {
+  for (const Patch* patch : {&link_.receiver, &link_.source}) {
     shaftPlanes_.push_back({patch->normal.x(), patch->normal.y(), patch->normal.z(),
                             -patch->normal.dot(patch->origin)});
   }
-  shaftArea_ = std::max(link.receiver.area, link.source.area);
+  shaftArea_ = std::max(link_.receiver.area, link_.source.area);
   const double tolerance = 1e-9 * scale;
-  for (const auto& polygon : link.occluders->polygons()) {
+  const std::size_t count = indices ? indices->size() : polygons.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto& polygon = polygons[indices ? std::size_t((*indices)[k]) : k];
     bool outside = false;
     for (const auto& plane : planes) {
       outside = true;

@@ -59,6 +59,9 @@ class ExactVisibility {
  public:
   // Keeps references to the link's patches and occluder scene; culls the occluders.
   explicit ExactVisibility(const Link& link, ShadowUnion method = ShadowUnion::outline);
+  // The same with the occluders polygons[i], i in `candidates`, instead of link.occluders's.
+  ExactVisibility(const Link& link, const std::vector<std::vector<Eigen::Vector3d>>& polygons,
+                  const std::vector<int>& candidates, ShadowUnion method = ShadowUnion::outline);
 
   // The visible part of the source from x (on the receiver, normal link.receiver.normal).
   // Thread-compatible: one object per thread, or calls from one thread at a time.
@@ -86,6 +89,11 @@ class ExactVisibility {
   bool subtractOutline(std::size_t shadowCount, VisibleRings& out);
   // Subtracts it by Clipper's union.
   void subtractClipperUnion(std::size_t shadowCount, VisibleRings& out);
+
+  void setDuals();
+  // Keeps the polygons (those of `indices`, or all) that meet the link's shaft.
+  void cull(const std::vector<std::vector<Eigen::Vector3d>>& polygons,
+            const std::vector<int>* indices);
 
   const Link& link_;
   ShadowUnion method_;

@@ -37,6 +37,7 @@ struct SolveCommandOptions {
   std::string droppedOrders = droppedOrdersName(DroppedOrders::kTruncated);
   std::size_t maxMemoryMiB = SolverOptions{}.maxMemoryBytes >> 20;
   bool compare = false;
+  bool noNearField = false;
   std::string renderPath;
   int threads = 0;
   bool quiet = false;
@@ -82,6 +83,7 @@ void runSolve(const SolveCommandOptions& command) {
   if (!(options.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
   if (!(options.tolerance > 0.0)) throw InputError("--tolerance: must be > 0");
   options.maxMemoryBytes = command.maxMemoryMiB << 20;
+  options.nearField = !command.noNearField;
   TraceOptions verify;
   verify.seed = parseDecimalOption(command.verifySeed, "--verify-seed", 0, ~std::uint64_t(0));
   if (!command.verifySamples.empty()) {
@@ -248,11 +250,9 @@ void addSolveCommand(CLI::App& app) {
                    "(exit 3) when the process's resident memory exceeds it")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 30))
       ->capture_default_str();
-  command
-      ->add_option("--singular-depth", options->solver.singularDepth,
-                   "Quadrant subdivision levels for links between touching elements")
-      ->check(CLI::Range(0, 8))
-      ->capture_default_str();
+  command->add_flag("--no-near-field", options->noNearField,
+                    "Integrate links between near elements with their product rules too "
+                    "(to measure what the near field changes)");
   command->add_option("--threads", options->threads, "Worker threads (0: all cores)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();

@@ -36,12 +36,10 @@ assert out["kernel_evaluations"] < c["fixed_kernel_evaluations"], (out["kernel_e
 # The ratios, recomputed from the reported counts.
 def close(a, b): return abs(a - b) <= 1e-12 * abs(b)
 assert close(c["evaluation_ratio"], c["fixed_kernel_evaluations"] / out["kernel_evaluations"]), c
-own = out["kernel_evaluations"] - out["composite_kernel_evaluations"]
-fixed = c["fixed_kernel_evaluations"] - c["fixed_composite_kernel_evaluations"]
-assert close(c["product_link_evaluation_ratio"], fixed / own), c
-if out["composite_kernel_evaluations"] > 0:
-    assert close(c["composite_evaluation_ratio"],
-                 c["fixed_composite_kernel_evaluations"] / out["composite_kernel_evaluations"]), c
+# Near-field links are integrated alike whatever the rule choice: the same points either way
+# when the hierarchy is the same, and never counted as product-rule kernel evaluations.
+assert out["near_field_points"] >= 0 and c["fixed_near_field_points"] >= 0, c
+assert (out["near_field_links"] > 0) == (out["near_field_points"] > 0), out
 assert out["converged"] is True and out["failure"] == "", out
 PY
   then

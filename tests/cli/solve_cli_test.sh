@@ -56,8 +56,8 @@ if [[ "$(head -c 8 "$work/cornell.png" | od -An -tx1 | tr -d ' \n')" != "89504e4
 fi
 
 # A solve that fails ends with exit status 3, the reason on stderr, "converged": false in the
-# JSON, and no render: two strips meeting along their long edge integrated without the
-# composite rule diverge; any scene cut off after two iterations has not converged.
+# JSON, and no render: two strips meeting along their long edge integrated without the near
+# field create energy; any scene cut off after two iterations has not converged.
 cat >"$work/strips.json" <<'JSON'
 {"patches": [
  {"name": "strip a", "origin": [0,0,0], "edge_u": [0,0,0.05], "edge_v": [2,0,0], "reflectance": [0.7,0.7,0.7]},
@@ -65,7 +65,7 @@ cat >"$work/strips.json" <<'JSON'
  {"name": "lamp", "origin": [0,1,0], "edge_u": [2,0,0], "edge_v": [0,0,1], "reflectance": [0,0,0], "emission": [1,1,1]}
 ]}
 JSON
-expect_status 3 "diverging solve" "diverged" solve "$work/strips.json" --singular-depth 0 --render "$work/diverged.png"
+expect_status 3 "energy-creating solve" "computation failed" solve "$work/strips.json" --no-near-field --render "$work/diverged.png"
 if ! grep -q '"converged": false' "$work/out"; then
   echo "FAIL: a diverged solve's JSON lacks \"converged\": false"; failures=$((failures + 1))
 fi
@@ -81,7 +81,7 @@ expect_status 3 "initial link budget" "link budget (100 links) was reached durin
 # The memory budget: any process holds more than 1 MiB once the scene is linked.
 expect_status 3 "memory budget" "memory budget (1 MiB) was reached during the initial linking" solve cornell --max-memory 1
 expect_status 2 "zero memory budget" "--max-memory" solve cornell --max-memory 0
-expect_status 0 "strips with the composite rule" "" solve "$work/strips.json" --degree 2
+expect_status 0 "strips in the near field" "" solve "$work/strips.json" --degree 2
 
 if [[ $failures -ne 0 ]]; then echo "$failures failure(s)"; exit 1; fi
 echo "all solve CLI checks passed"

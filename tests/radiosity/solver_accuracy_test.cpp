@@ -32,7 +32,7 @@ void expectNearTrace(const Scene& scene, const Solver& solver, const TraceResult
 }
 
 // Two 2.0 x 0.05 strips meeting at a right angle along their long edge under an emitter: the
-// case that diverged to 1e29 (radquad solve's composite rule kept the strips' 40:1 pieces).
+// case that diverged to 1e29 (a composite product rule kept the strips' 40:1 pieces).
 TEST(SolverAgainstTrace, ElongatedTouchingStrips) {
   Scene scene;
   scene.patches.push_back(scenePatch("strip a", {0, 0, 0}, {0, 0, 0.05}, {2, 0, 0}, 0.7));

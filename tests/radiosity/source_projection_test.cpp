@@ -161,20 +161,9 @@ TEST(SourceProjectionTest, TruncatedGatherIsTheKeptColumnsTimesTheTruncatedSourc
         const Eigen::MatrixXd factored = kept.leftCols(pu * pv) * projected;
         EXPECT_LE((factored - expected).norm(), 1e-13 * expected.norm())
             << "degree " << degree << " points " << pu << "x" << pv;
-        // dropOrders on the whole coupling gives the same gather.
-        Eigen::MatrixXd whole = integral.coupling;
-        projection.dropOrders(pu, pv, whole.data());
-        EXPECT_LE((whole * radiosity - expected).norm(), 1e-13 * expected.norm());
       }
     }
   }
-}
-
-TEST(SourceProjectionTest, AliasedCompositeCouplingIsLeftAlone) {
-  const SourceProjection projection(2, DroppedOrders::kAliased);
-  Eigen::MatrixXd coupling = Eigen::MatrixXd::Constant(9, 9, 0.5);
-  projection.dropOrders(1, 1, coupling.data());
-  EXPECT_EQ(coupling, Eigen::MatrixXd::Constant(9, 9, 0.5));
 }
 
 // A far, smooth link and a source that is a pure quadratic along u: the exact gather,
