@@ -19,9 +19,10 @@
 // long as wide, else quartered) while they differ by more than its share (by area) of the
 // tolerance (relative to the coupling's largest entry), or while it is larger than the band
 // in which the inner integral changes near an edge of S' and lies in it (its points could all
-// miss the band), or larger than S' and nearer to it than its size (near_field.cpp,
-// mustSplit), up to kMaxLevel and kMaxForcedLevel quarterings. Accepted pieces contribute
-// their n + 1 point estimates.
+// miss the band; only where the band can hold a share of the coupling above the tolerance),
+// or larger than S' and nearer to it than its size (near_field.cpp, mustSplit), up to
+// kMaxLevel and kMaxForcedLevel quarterings. Accepted pieces contribute their n + 1 point
+// estimates.
 #pragma once
 
 #include <Eigen/Core>
@@ -91,6 +92,7 @@ class NearFieldIntegrator {
 
   std::vector<Eigen::Vector3d> sourceCorners_, visibleSource_;  // S and S' (clipped)
   double visibleDiameter_ = 0.0;
+  std::vector<char> bandMatters_;  // per edge of S'
   VisibleRings rings_;
 };
 

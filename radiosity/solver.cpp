@@ -64,7 +64,10 @@ std::size_t Solver::computeCouplings() {
     }
     // A link whose source has no radiosity yet carries nothing: it is integrated once its
     // source has some (with every rule choice), so that the adaptive choice sees the
-    // source's coefficients rather than zeros.
+    // source's coefficients rather than zeros. A receiver that reflects nothing (an emitter,
+    // a black surface) multiplies what it gathers by 0: its links are never integrated.
+    const int patch = (*hierarchy_)[link.receiver].patch;
+    if (!(scene_.patches[std::size_t(patch)].reflectance.maxCoeff() > 0.0)) return false;
     return !(*hierarchy_)[link.source].radiosity.isZero(0.0);
   };
   for (const int k : linksWhere(links_, mayNeedCoupling)) {
