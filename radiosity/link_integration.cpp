@@ -16,9 +16,6 @@ bool pointOnPatch(const Eigen::Vector3d& point, const Patch& patch, double toler
   return u >= -slackU && u <= 1.0 + slackU && v >= -slackV && v <= 1.0 + slackV;
 }
 
-double radius(const Patch& p) {
-  return 0.5 * std::max((p.edgeU + p.edgeV).norm(), (p.edgeU - p.edgeV).norm());
-}
 
 }  // namespace
 
@@ -33,8 +30,12 @@ bool elementsTouch(const Patch& a, const Patch& b) {
   return false;
 }
 
+double diameter(const Patch& p) {
+  return std::max((p.edgeU + p.edgeV).norm(), (p.edgeU - p.edgeV).norm());
+}
+
 double separationRatio(const Patch& a, const Patch& b) {
-  return (a.centre() - b.centre()).norm() / (radius(a) + radius(b));
+  return (a.centre() - b.centre()).norm() / (0.5 * (diameter(a) + diameter(b)));
 }
 
 bool nearField(const Patch& receiver, const Patch& source) {

@@ -26,6 +26,9 @@ namespace radquad {
 // Whether a corner of either parallelogram lies on the other (within a relative tolerance).
 bool elementsTouch(const Patch& a, const Patch& b);
 
+// The longer diagonal of an element: the largest distance between two of its points.
+double diameter(const Patch& p);
+
 // The distance between the elements' centres over the sum of their radii (half the longer
 // diagonal of each).
 double separationRatio(const Patch& a, const Patch& b);

@@ -5,6 +5,7 @@
 
 #include "kernel/legendre_basis.h"
 #include "kernel/patch_intersection.h"
+#include "radiosity/link_integration.h"
 #include "quadrature/gauss_legendre.h"
 #include "reference/source_moments.h"
 
@@ -21,10 +22,6 @@ Patch part(const Patch& patch, double u0, double v0, double du, double dv) {
   return piece;
 }
 
-double diameter(const Patch& patch) {
-  return std::max((patch.edgeU + patch.edgeV).norm(), (patch.edgeU - patch.edgeV).norm());
-}
-
 }  // namespace
 
 // Whether a piece must be split whatever its estimates say: it is larger than its distance d
@@ -34,7 +31,7 @@ double diameter(const Patch& patch) {
 // I falls from 1 to 1/2 within about 1 cm of the edge's foot). Its points and its halves'
 // could all miss that band and agree on a wrong value. Farther from the edge the integrand
 // varies on the scale of the distance, with a magnitude that falls like h / d^2, and the
-// halves' estimates see it. An edge that touches the piece or lies in the receiver's plane (a
+// piece's two estimates see it. An edge that touches the piece or lies in the receiver's plane (a
 // shared edge, the line where the receiver's plane cuts the source) leaves the integrand
 // bounded and continuous there, and the estimates see its variation too.
 bool NearFieldIntegrator::mustSplit(const Piece& piece, int level) const {
