@@ -3,14 +3,16 @@
 
 Figure 1: one bar per rule, the mean relative error of K[0][0] on partially visible links
 (constant bases), log scale, error bars one standard error of the mean over links.
-Figure 2: per rule, two stacked bars (unoccluded left, partial right) of the mean L1 error
-bound per unit receiver area, stacked by source basis function, constant at the bottom,
-as in the report's Figure 2; beside it, the scale-free relative Frobenius error of K (mean
-and standard error over links), which compares the classes fairly where U_b follows each
-link's size of K.
+Figure 2: per rule, one bar per class of links (unoccluded, partially occluded, singular:
+touching or cut by the other's plane) of the mean L1 error bound per unit receiver area, on a
+log axis (the classes differ by orders); below it the share of each source basis function in
+that bound, stacked as in the report's Figure 2 (constant at the bottom); below that the
+scale-free relative Frobenius error of K, which compares the classes fairly where U_b follows
+each link's size of K. Error bars: one standard error of the mean over links.
 Breakdowns (<stem>-breakdown): every rule's mean error over FullGauss's on the same links,
 with its 95% interval, by occluder kind and by distance band (centre distance over the
-longest side); below 1 the rule beats FullGauss there.
+longest side), one row per class; in Figure 1's metric for Figure 1, in the L1 bound for
+Figure 2. Below 1 the rule beats FullGauss there.
 Tables scored against the gold (the default; not with `--no-gold`) are drawn against the gold, with the paper's
 10,000-sample reference as one more bar (its own error against the gold). Tables of
 scene-derived links (fig1-scene.json, fig2-scene.json, when present) are drawn the same way.
@@ -101,63 +103,88 @@ def figure1(table, plots, stem):
     plt.close(figure)
 
 
+CLASS_STYLE = {"unoccluded": ("#4c72b0", None), "partial": ("#dd8452", "//"),
+               "singular": ("#55a868", "..")}
+
+
 def figure2(table, plots, stem):
+    """Three panels sharing the rules: the mean L1 error bound per unit area (the report's
+    Figure 2, totals on a log axis, since the classes differ by orders), the share of each
+    source function in it (the report's stacking, each bar scaled to 1), and the scale-free
+    relative Frobenius error of K."""
     classes = table["classes"]
-    order = [name for name in ("unoccluded", "partial") if name in classes]
+    order = [name for name in ("unoccluded", "partial", "singular") if name in classes]
     gold = "l1_error_bound_vs_gold" in classes[order[0]]["rules"][0]
     key = "l1_error_bound_vs_gold" if gold else "l1_error_bound"
+    frobenius = "relative_frobenius_error_vs_gold" if gold else "relative_frobenius_error"
     # The bars of each class: its rules and, scored against the gold, the paper's reference
     # (the table itself is left as it is: the breakdown figure reads it afterwards).
     bars = {name: list(classes[name]["rules"]) for name in order}
     if gold:
         for class_name in order:
             reference = classes[class_name]["reference"]
-            if "l1_error_bound_vs_gold" in reference and not any(
-                    rule["name"] == "Reference" for rule in bars[class_name]):
+            if key in reference and not any(rule["name"] == "Reference" for rule in bars[class_name]):
                 bars[class_name].append({"name": "Reference", **{
-                    k: reference[k] for k in (key, "relative_frobenius_error_vs_gold") if k in reference}})
+                    k: reference[k] for k in (key, frobenius) if k in reference}})
     names = [rule["name"] for rule in bars[order[0]]]
     functions = len(bars[order[0]][0][key]["per_source_function"])
     side = int(round(functions ** 0.5))
     colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.95, functions))
-    figure, (axes, scale_free) = plt.subplots(1, 2, figsize=(14.0, 4.6),
-                                              gridspec_kw={"width_ratios": [1.9, 1.0], "wspace": 0.25})
-    width = 0.38
+    figure, (totals, shares, scale_free) = plt.subplots(
+        3, 1, figsize=(11.0, 10.5), sharex=True, gridspec_kw={"height_ratios": [1.2, 1.0, 1.0]})
+    width = 0.8 / len(order)
+    top = 0.0  # the highest whisker of the totals
+
+    def positions(offset):
+        return np.arange(len(names)) + (offset - 0.5 * (len(order) - 1)) * width
+
     for offset, class_name in enumerate(order):
         rules = {rule["name"]: rule for rule in bars[class_name]}
-        positions = np.arange(len(names)) + (offset - 0.5 * (len(order) - 1)) * (width + 0.02)
+        colour, hatch = CLASS_STYLE[class_name]
+        label = f"{class_name} ({classes[class_name]['links']} links)"
+        means = np.array([rules[n][key]["total"] for n in names])
+        sems = np.array([rules[n][key].get("total_sem", 0.0) for n in names])
+        # A log axis cannot show a bar reaching 0: the lower whisker stops short of it.
+        totals.bar(positions(offset), means, width * 0.95, color=colour, hatch=hatch,
+                   edgecolor="white", linewidth=0.3, label=label,
+                   yerr=[np.minimum(sems, 0.95 * means), sems], capsize=2, ecolor="black")
+        top = max(top, float(np.max(means + sems)))
         bottom = np.zeros(len(names))
         for b in range(functions):
             heights = np.array([rules[n][key]["per_source_function"][b] for n in names])
-            label = f"M({b // side},{b % side})" if offset == 0 else None
-            axes.bar(positions, heights, width, bottom=bottom, color=colours[b], label=label,
-                     edgecolor="white", linewidth=0.3, hatch=None if class_name == "unoccluded" else "//")
+            heights = np.divide(heights, means, out=np.zeros_like(heights), where=means > 0)
+            shares.bar(positions(offset), heights, width * 0.95, bottom=bottom, color=colours[b],
+                       label=f"M({b // side},{b % side})" if offset == 0 else None,
+                       edgecolor="white", linewidth=0.3, hatch=hatch)
             bottom += heights
-    axes.set_xticks(np.arange(len(names)), names, fontsize=8)
-    axes.set_ylabel("mean L1 error bound per unit area" + (" (against gold)" if gold else ""))
-    counts = ", ".join(f"{c} ({classes[c]['links']} links)" for c in order)
-    axes.set_title(f"Figure 2: quadratic bases; left bars {order[0]}, right (hatched) {order[-1]}; {counts}"
-                   f"{scene_source(table)}", fontsize=9)  # linear axis: placed above its offset text
-    axes.legend(fontsize=6, loc="upper left", ncol=3, title="source function", title_fontsize=7)
+        shown = [n for n in names if frobenius in rules[n]]
+        scale_free.bar(positions(offset)[[names.index(n) for n in shown]],
+                       [rules[n][frobenius]["mean"] for n in shown], width * 0.95,
+                       yerr=[[min(rules[n][frobenius]["sem"], 0.95 * rules[n][frobenius]["mean"])
+                              for n in shown], [rules[n][frobenius]["sem"] for n in shown]],
+                       capsize=2, ecolor="black", color=colour, hatch=hatch, edgecolor="white",
+                       linewidth=0.3, label=class_name)
+    against = " (against gold)" if gold else ""
+    totals.set_yscale("log")
+    totals.set_ylabel("mean L1 error bound\nper unit area" + against, fontsize=8)
+    totals.set_ylim(top=1.5 * top)
+    totals.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.005, 1.0), title="links",
+                  title_fontsize=7)
     floor = ", ".join(f"{c} {classes[c]['reference']['l1_standard_error']['total']:.2g}" for c in order
                       if "l1_standard_error" in classes[c]["reference"])
-    note = reference_note(table) + (f"; its own L1 standard error (total): {floor}" if floor else "")
-    axes.text(0.0, -0.14, note, transform=axes.transAxes, fontsize=7)
-    axes.grid(axis="y", alpha=0.3)
-    frobenius = "relative_frobenius_error_vs_gold" if gold else "relative_frobenius_error"
-    for offset, class_name in enumerate(order):
-        rules = {rule["name"]: rule for rule in bars[class_name] if frobenius in rule}
-        shown = [n for n in names if n in rules]
-        positions = np.array([names.index(n) for n in shown]) + (offset - 0.5 * (len(order) - 1)) * (width + 0.02)
-        scale_free.bar(positions, [rules[n][frobenius]["mean"] for n in shown], width,
-                       yerr=[rules[n][frobenius]["sem"] for n in shown], capsize=2, ecolor="black",
-                       color="#4c72b0" if class_name == "unoccluded" else "#dd8452", label=class_name)
+    note = reference_note(table) + (f";\nits own L1 standard error (total): {floor}" if floor else "")
+    totals.set_title(f"Figure 2: quadratic bases{scene_source(table)}\n{note}", fontsize=9, y=1.0)
+    shares.set_ylim(0.0, 1.0)
+    shares.set_ylabel("share of each source\nfunction in the bound", fontsize=8)
+    shares.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.005, 1.0), title="source function",
+                  title_fontsize=7)
     scale_free.set_yscale("log")
-    scale_free.set_xticks(np.arange(len(names)), names, fontsize=7, rotation=45, ha="right")
-    scale_free.set_ylabel("mean relative Frobenius error of K" + (" (against gold)" if gold else ""), fontsize=8)
-    scale_free.set_title("scale-free: ||K~ - K||_F / ||K||_F", fontsize=9, y=1.0)
-    scale_free.legend(fontsize=7)
-    scale_free.grid(axis="y", which="both", alpha=0.3)
+    scale_free.set_ylabel("mean ||K~ - K||_F / ||K||_F" + against, fontsize=8)
+    scale_free.set_xticks(np.arange(len(names)), names, fontsize=8, rotation=30, ha="right")
+    for axes in (totals, scale_free):
+        axes.grid(axis="y", which="both", alpha=0.3)
+        axes.set_axisbelow(True)
+    figure.align_ylabels()
     save(figure, plots, stem)
     plt.close(figure)
 
@@ -165,26 +192,27 @@ def figure2(table, plots, stem):
 def breakdown_figure(table, plots, stem):
     """Paired ratios to FullGauss with 95% intervals, by occluder kind and by distance band."""
     if "classes" in table:
-        groups = [(f"{c}: ", table["classes"][c]) for c in ("unoccluded", "partial") if c in table["classes"]]
-        metric = "relative_frobenius_error"
+        groups = [(f"{c}: ", table["classes"][c]) for c in ("unoccluded", "partial", "singular")
+                  if c in table["classes"]]
+        metric = "l1_error_bound_total"  # the metric of Figure 2's bars
     else:
         groups = [("", table)]
         metric = "relative_error"
     if "relative_error_vs_gold" in groups[0][1]["rules"][0]:
         metric += "_vs_gold"  # tables scored against the gold are drawn against it
     names = [rule["name"] for rule in (groups[0][1]["rules"])]
-    panels = []
+    rows = []
     for prefix, part in groups:
         occluders = part["breakdown"]["by_occluder"]
-        panels.append((prefix + "by occluder", [(kind, occluders[kind]) for kind in sorted(occluders)]))
         bands = []
         for band in part["breakdown"]["by_distance"]:
             low, high = band["distance_factor"]
             bands.append((f"{low:g}-{high:g}" if high is not None else f">= {low:g}", band))
-        panels.append((prefix + "by distance / longest side", bands))
-    figure, axes_list = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.2), squeeze=False)
+        rows.append([(prefix + "by occluder", [(kind, occluders[kind]) for kind in sorted(occluders)]),
+                     (prefix + "by distance / longest side", bands)])
+    figure, axes_grid = plt.subplots(len(rows), 2, figsize=(11.0, 3.6 * len(rows)), squeeze=False)
     colours = plt.get_cmap("tab10")(np.arange(len(names)))
-    for axes, (title, entries) in zip(axes_list[0], panels):
+    for axes, (title, entries) in zip(axes_grid.flat, [panel for row in rows for panel in row]):
         entries = [(label, entry) for label, entry in entries
                    if entry.get("links", 0) >= 2 and "ratio_to_fullgauss" in entry.get(metric, {})]
         spread = 0.8 / max(1, len(names))
@@ -206,9 +234,12 @@ def breakdown_figure(table, plots, stem):
                         [f"{label}\n({entry['links']} links)" for label, entry in entries], fontsize=7)
         axes.set_title(title, fontsize=9, y=1.0)
         axes.grid(axis="y", which="both", alpha=0.3)
-    axes_list[0][0].set_ylabel(f"mean {metric.replace('_', ' ')} / FullGauss's (95% interval)", fontsize=8)
-    axes_list[0][-1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    figure.suptitle(f"{stem}: where each rule wins against FullGauss (below 1: the rule is better)", fontsize=10)
+    for axes in axes_grid[:, 0]:
+        axes.set_ylabel(f"mean {metric.replace('_', ' ')}\n/ FullGauss's (95% interval)", fontsize=8)
+    axes_grid[0][-1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    figure.suptitle(f"{stem}: where each rule wins against FullGauss (below 1: the rule is better)",
+                    fontsize=10, y=1.0 - 0.1 / figure.get_figheight())
+    figure.subplots_adjust(top=1.0 - 0.55 / figure.get_figheight(), hspace=0.35)
     save(figure, plots, stem + "-breakdown")
     plt.close(figure)
 
