@@ -165,6 +165,56 @@ bool Solver::oracleSaysRefine(SolverLink& link) const {
   return formFactor * radiosity * factor > threshold;
 }
 
+// The transfer alone accepts a link whose receiver is dim beside a source whose radiosity
+// varies where the receiver looks: a block face 0.69 m from a red wall sees the strips of
+// floor and ceiling along that wall, darker in blue than the polynomial of the large ceiling
+// element the link reaches, and took their blue from the polynomial. The error such a link
+// makes is at most F times the part of the source's radiosity that its polynomial cannot
+// show (what its children hold beyond it), times the receiver's reflectance; it is weighed
+// against the receiver's own radiosity (with a floor of the BF threshold, so that black
+// receivers do not refine without end), channel by channel.
+bool Solver::sourceVariationMatters(const SolverLink& link, double formFactor) const {
+  if (!(options_.variationEpsilon > 0.0) || !link.active) return false;
+  // Elements created in this pass are leaves when they are measured: nothing to show.
+  if (std::size_t(link.source) >= sourceVariation_.size()) return false;
+  const Element& source = (*hierarchy_)[link.source];
+  if (source.isLeaf() || source.geometry.area <= minArea_ || source.level >= options_.maxLevel) {
+    return false;
+  }
+  const Element& receiver = (*hierarchy_)[link.receiver];
+  const Eigen::Vector3d variation = sourceVariation_[std::size_t(link.source)].cast<double>();
+  const Eigen::Vector3d own = receiver.meanRadiosity().cwiseMax(options_.bfEpsilon * radiosityScale_);
+  const Eigen::Vector3d reflectance = scene_.patches[std::size_t(receiver.patch)].reflectance;
+  const Eigen::Vector3d error = formFactor * reflectance.cwiseProduct(variation);
+  return (error.array() > options_.variationEpsilon * own.array()).any();
+}
+
+int Solver::oracleChoice(SolverLink& link) const {
+  if (oracleSaysRefine(link)) return splitSide(link);
+  const double formFactor =
+      link.oracleFormFactor >= 0.0f ? double(link.oracleFormFactor) : oracleFormFactor(link);
+  return sourceVariationMatters(link, formFactor) ? 1 : -1;
+}
+
+void Solver::measureSourceVariation() {
+  const std::size_t count = hierarchy_->size();
+  sourceVariation_.assign(count, Eigen::Vector3f::Zero());
+  const TwoScale& twoScale = hierarchy_->twoScale();
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t e) {
+    const Element& element = (*hierarchy_)[int(e)];
+    if (element.isLeaf()) return;
+    Eigen::Vector3d largest = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 4; ++c) {
+      const Element& child = (*hierarchy_)[element.firstChild + c];
+      const Coefficients residual = child.radiosity - twoScale.push(element.radiosity, c);
+      // The orthonormal basis: the residual's RMS over the child is its norm over sqrt(A).
+      largest = largest.cwiseMax(residual.colwise().norm().transpose() /
+                                 std::sqrt(child.geometry.area));
+    }
+    sourceVariation_[e] = largest.cast<float>();
+  });
+}
+
 // Splits every active link the oracle rejects into links to the larger element's children,
 // breadth first: one wave of splits (sequential: it creates elements and links in a fixed
 // order), then the new links' classification (parallel), then the next wave on them.
@@ -175,6 +225,7 @@ bool Solver::refinementPass() {
            (link.visibility == LinkClass::kOccluded && !link.occlusionProven && !link.split);
   };
   HugePageVector<int> pending = linksWhere(links_, examined);
+  measureSourceVariation();
   bool refined = false;
   ProgressThrottle throttle;
   int wave = 0;
@@ -201,7 +252,7 @@ bool Solver::refinementPass() {
         choices[k] = forcedSplit_[index] == kSplitReceiver ? 0 : 1;
         return;
       }
-      choices[k] = examined(link) && oracleSaysRefine(link) ? splitSide(link) : -1;
+      choices[k] = examined(link) ? oracleChoice(link) : -1;
     });
     HugePageVector<int> created;
     for (std::size_t k = 0; k < pending.size(); ++k) {

@@ -66,6 +66,11 @@ struct SolverOptions {
   // ... and the larger element's area exceeds minArea (scene units squared); a value <= 0
   // means 1e-4 of the largest patch's area.
   double minArea = 0.0;
+  // Beside the transfer, a link is split at its source when the part of the source's
+  // radiosity that its polynomial cannot show, times the form factor and the receiver's
+  // reflectance, exceeds this fraction of the receiver's radiosity in some channel
+  // (Solver::sourceVariationMatters); 0 turns the check off.
+  double variationEpsilon = 0.01;
   // Partially visible links are less certain: their transfer estimate is multiplied by this.
   double partialFactor = 4.0;
   // Iterations stop when the relative L2 change of the patch-level radiosity falls below
@@ -261,8 +266,17 @@ class Solver {
   bool memoryExceeded(const char* phase);
   std::string budgetExceeded_;  // set when a budget stops the solve
   void classifyLinks(HugePageVector<int>& created);
+  // Which element of a link the oracle splits: -1 none, 0 the receiver, 1 the source.
   // Records the link's form-factor estimate (link.oracleFormFactor) on its first examination.
+  int oracleChoice(SolverLink& link) const;
   bool oracleSaysRefine(SolverLink& link) const;
+  // Whether the part of the source's radiosity that its polynomial cannot show
+  // (sourceVariation_) can move the receiver's by more than variationEpsilon of its own.
+  bool sourceVariationMatters(const SolverLink& link, double formFactor) const;
+  // Per element, per channel: the largest RMS over its children of their radiosity less the
+  // element's polynomial pushed onto them (0 for a leaf); measured at each refinement pass.
+  void measureSourceVariation();
+  std::vector<Eigen::Vector3f> sourceVariation_;
   // The oracle's form-factor estimate, in double precision (0 where the link's larger element
   // may not be split).
   double oracleFormFactor(const SolverLink& link) const;

@@ -81,6 +81,7 @@ void runSolve(const SolveCommandOptions& command) {
   if (!(options.bfEpsilon > 0.0)) throw InputError("--bf-eps: must be > 0");
   if (!(options.minArea >= 0.0)) throw InputError("--min-area: must be >= 0 (0: automatic)");
   if (!(options.partialFactor >= 1.0)) throw InputError("--partial-factor: must be >= 1");
+  if (!(options.variationEpsilon >= 0.0)) throw InputError("--variation-eps: must be >= 0 (0: off)");
   if (!(options.tolerance > 0.0)) throw InputError("--tolerance: must be > 0");
   options.maxMemoryBytes = command.maxMemoryMiB << 20;
   options.nearField = !command.noNearField;
@@ -222,6 +223,11 @@ void addSolveCommand(CLI::App& app) {
   command
       ->add_option("--min-area", options->solver.minArea,
                    "Smallest element area to split (scene units^2; 0: 1e-4 of the largest patch)")
+      ->capture_default_str();
+  command
+      ->add_option("--variation-eps", options->solver.variationEpsilon,
+                   "Split a link at its source where the source's radiosity beyond its "
+                   "polynomial can move the receiver's by more than this fraction (0: off)")
       ->capture_default_str();
   command
       ->add_option("--partial-factor", options->solver.partialFactor,
