@@ -11,6 +11,7 @@ nlohmann::json solverOptionsJson(const Solver& solver) {
           {"dropped_orders", droppedOrdersName(options.droppedOrders)},
           {"bf_eps", options.bfEpsilon},
           {"min_area", solver.minArea()},
+          {"variation_eps", options.variationEpsilon},
           {"partial_factor", options.partialFactor},
           {"tolerance", options.tolerance},
           {"max_iterations", options.maxIterations},
