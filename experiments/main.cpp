@@ -7,11 +7,14 @@
 #include <string>
 
 #include "experiments/commands/commands.h"
+#include "experiments/version_info.h"
 #include "kernel/input_error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"radquad: quadrature of irradiance couplings in Galerkin radiosity"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", radquad::versionLine(),
+                       "Print the version, the commit it was built from and the build flavour");
   radquad::addLinkCommand(app);
   radquad::addReferenceCommand(app);
   radquad::addRulesCommand(app);

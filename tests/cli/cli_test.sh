@@ -33,6 +33,14 @@ expect_error() {
   check "$name" 0
 }
 
+# --version: the project's version from CMakeLists.txt, the commit (40 hex digits, possibly
+# "-modified", or "unknown" outside a git checkout) and the build flavour; exit 0.
+version_line=$("$radquad" --version)
+check version $?
+project_version=$(sed -n 's/^project(radquad VERSION \([0-9.]*\).*/\1/p' "$fixtures/../../CMakeLists.txt")
+echo "$version_line" | grep -Eq "^radquad ${project_version//./\\.} \(commit ([0-9a-f]{40}(-modified)?|unknown), (native|portable) build\)$"
+check "version line '$version_line' (project version $project_version)" $?
+
 expect_error malformed_json "malformed.json: malformed JSON" link "$fixtures/malformed.json" --rule FullGauss
 # Limits: input files are read up to a cap (RADQUAD_MAX_INPUT_BYTES, default 256 MiB), a
 # device without end included; trials are capped.
