@@ -218,8 +218,8 @@ void Solver::measureSourceVariation() {
 
 // Elements closer than their size see each other's radiosity vary over distances of the gap
 // between them, not of their own size: the office's cable tray 4 cm under the ceiling sees the
-// strip of ceiling its own shadow darkens, and with elements of the default smallest area
-// (5.5 cm across) came out 2-3% dark at degrees 2-3. A near link whose elements face each
+// strip of ceiling its own shadow darkens, and with elements of the default smallest area,
+// wider than that gap, came out dark (radiosity/README.md). A near link whose elements face each
 // other (normals within 60 degrees of opposite) across a gap narrower than the smallest
 // element's side may split down to half the gap squared, and no further than a sixteenth of
 // the smallest area (two more levels). Elements at an angle (a wall and the floor along their
