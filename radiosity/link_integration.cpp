@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kernel/patch_intersection.h"
 
@@ -36,6 +37,19 @@ double diameter(const Patch& p) {
 
 double separationRatio(const Patch& a, const Patch& b) {
   return (a.centre() - b.centre()).norm() / (0.5 * (diameter(a) + diameter(b)));
+}
+
+double planeGap(const Patch& a, const Patch& b) {
+  const auto oneSided = [](const Patch& plane, const Patch& other) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const Eigen::Vector3d& corner : other.corners()) {
+      const double d = plane.normal.dot(corner - plane.origin);
+      low = std::min(low, d);
+      high = std::max(high, d);
+    }
+    return low > 0.0 ? low : (high < 0.0 ? -high : 0.0);
+  };
+  return std::max(oneSided(a, b), oneSided(b, a));
 }
 
 bool nearField(const Patch& receiver, const Patch& source) {

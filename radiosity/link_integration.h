@@ -33,6 +33,12 @@ double diameter(const Patch& p);
 // diagonal of each).
 double separationRatio(const Patch& a, const Patch& b);
 
+// A lower bound of the distance between two elements from their planes: for each element,
+// the smallest distance to its plane of the other's corners when they all lie on one side of
+// it (0 when they straddle it); the larger of the two. Exact for parallel elements that face
+// each other across a gap.
+double planeGap(const Patch& a, const Patch& b);
+
 inline constexpr double kNearFactor = 1.0;
 inline constexpr double kModeratelyNearFactor = 2.0;
 

@@ -127,7 +127,7 @@ double Solver::oracleFormFactor(const SolverLink& link) const {
   const Element& receiver = (*hierarchy_)[link.receiver];
   const Element& source = (*hierarchy_)[link.source];
   const Element& larger = receiver.geometry.area >= source.geometry.area ? receiver : source;
-  if (larger.geometry.area <= minArea_ || larger.level >= options_.maxLevel) return 0.0;
+  if (larger.geometry.area <= smallestArea(link) || larger.level >= options_.maxLevel) return 0.0;
   const Patch& r = receiver.geometry;
   const Patch& s = source.geometry;
   if (!link.nearField) return discFormFactor(r, r.centre(), s, s.centre());
@@ -178,7 +178,8 @@ bool Solver::sourceVariationMatters(const SolverLink& link, double formFactor) c
   // Elements created in this pass are leaves when they are measured: nothing to show.
   if (std::size_t(link.source) >= sourceVariation_.size()) return false;
   const Element& source = (*hierarchy_)[link.source];
-  if (source.isLeaf() || source.geometry.area <= minArea_ || source.level >= options_.maxLevel) {
+  if (source.isLeaf() || source.geometry.area <= smallestArea(link) ||
+      source.level >= options_.maxLevel) {
     return false;
   }
   const Element& receiver = (*hierarchy_)[link.receiver];
@@ -213,6 +214,24 @@ void Solver::measureSourceVariation() {
     }
     sourceVariation_[e] = largest.cast<float>();
   });
+}
+
+// Elements closer than their size see each other's radiosity vary over distances of the gap
+// between them, not of their own size: the office's cable tray 4 cm under the ceiling sees the
+// strip of ceiling its own shadow darkens, and with elements of the default smallest area,
+// wider than that gap, came out dark (radiosity/README.md). A near link whose elements face each
+// other (normals within 60 degrees of opposite) across a gap narrower than the smallest
+// element's side may split down to half the gap squared, and no further than a sixteenth of
+// the smallest area (two more levels). Elements at an angle (a wall and the floor along their
+// corner) keep the smallest area: the near field integrates their kernel's singularity.
+double Solver::smallestArea(const SolverLink& link) const {
+  if (!link.nearField) return minArea_;
+  const Patch& receiver = (*hierarchy_)[link.receiver].geometry;
+  const Patch& source = (*hierarchy_)[link.source].geometry;
+  if (receiver.normal.dot(source.normal) > -0.5) return minArea_;
+  const double gap = planeGap(receiver, source);
+  if (!(gap > 0.0)) return minArea_;
+  return std::clamp(0.5 * gap * gap, minArea_ / 16.0, minArea_);
 }
 
 // Splits every active link the oracle rejects into links to the larger element's children,
@@ -332,7 +351,7 @@ int Solver::splitSide(const SolverLink& link) const {
   const VisibilityVariation variation = visibilityVariation(impl_->occluders, r, s);
   const int side = variation.receiver == variation.source ? larger : (variation.receiver ? 0 : 1);
   // The element must still be splittable; the oracle has checked that the larger one is.
-  return (side == 0 ? r.area : s.area) > minArea_ ? side : larger;
+  return (side == 0 ? r.area : s.area) > smallestArea(link) ? side : larger;
 }
 
 }  // namespace radquad

@@ -277,6 +277,9 @@ class Solver {
   // element's polynomial pushed onto them (0 for a leaf); measured at each refinement pass.
   void measureSourceVariation();
   std::vector<Eigen::Vector3f> sourceVariation_;
+  // The area at or below which neither element of the link is split: the smallest area,
+  // or less for a near link across a gap narrower than the smallest element (refinement.cpp).
+  double smallestArea(const SolverLink& link) const;
   // The oracle's form-factor estimate, in double precision (0 where the link's larger element
   // may not be split).
   double oracleFormFactor(const SolverLink& link) const;

@@ -232,5 +232,27 @@ TEST(ProductRules, NearFieldSelection) {
   EXPECT_TRUE(nearField(floor, Patch::make({5, -5, -1}, {0, 10, 0}, {0, 0, 2}, "crossing")));
 }
 
+// planeGap is a lower bound of the distance between two elements, exact across a gap between
+// parallel faces: checked against distances known by construction.
+TEST(ProductRules, PlaneGapBoundsTheDistanceBetweenElements) {
+  const Patch floor = Patch::make({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, "floor");
+  // A face 4 cm above, turned down: the gap exactly, either way round.
+  const Patch above = Patch::make({0.2, 0.3, 0.04}, {0, 0.1, 0}, {0.5, 0, 0}, "above");
+  EXPECT_NEAR(planeGap(floor, above), 0.04, 1e-15);
+  EXPECT_NEAR(planeGap(above, floor), 0.04, 1e-15);
+  // A wall standing on the floor, and one crossing its plane: 0.
+  EXPECT_EQ(planeGap(floor, Patch::make({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, "wall")), 0.0);
+  EXPECT_EQ(planeGap(floor, Patch::make({0, 0.5, -0.2}, {1, 0, 0}, {0, 0, 1}, "crossing")), 0.0);
+  // A face tilted over the floor, its lowest corner 0.1 above it: 0.1, and never more than
+  // the true distance (the lowest corner lies over the floor).
+  const Patch tilted = Patch::make({0.5, 0.5, 0.1}, {0.3, 0, 0.3}, {0, 0.3, 0}, "tilted");
+  EXPECT_NEAR(planeGap(floor, tilted), 0.1, 1e-15);
+  // A square beside the floor, lifted 0.3 and moved 0.4 away from its edge: the planes
+  // bound the true distance 0.5 from below by 0.3.
+  const Patch beside = Patch::make({1.4, 0, 0.3}, {0, 1, 0}, {1, 0, 0}, "beside");
+  EXPECT_NEAR(planeGap(floor, beside), 0.3, 1e-15);
+  EXPECT_LE(planeGap(floor, beside), 0.5);
+}
+
 }  // namespace
 }  // namespace radquad
