@@ -15,6 +15,7 @@ Usage: /usr/bin/python3 scripts/solver_accuracy.py [--radquad PATH] [--out FILE]
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -54,6 +55,16 @@ def compare(solved, traced):
         sum(d[0] for d in differences) / len(differences)
 
 
+def built_from(radquad):
+    """The commit `radquad --version` names (the tree the binary was built from)."""
+    result = subprocess.run([radquad, "--version"], capture_output=True, text=True)
+    match = re.search(r"\(commit ([^,]+),", result.stdout)
+    if result.returncode != 0 or not match:
+        sys.exit(f"solver_accuracy: {radquad} --version did not name a commit: "
+                 f"{result.stdout.strip()} {result.stderr.strip()}")
+    return match.group(1)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -68,7 +79,8 @@ def main():
         sys.exit("solver_accuracy: --samples must be >= 1 and --degrees within 0..3")
     out = {"samples": args.samples, "settings": "radquad solve defaults", "scenes": []}
     # What changes from run to run (CPU times, memory) goes to the run record beside the result.
-    record = {"result": os.path.basename(args.out), "scenes": []}
+    record = {"result": os.path.basename(args.out), "git_commit": built_from(args.radquad),
+              "scenes": []}
     for scene in args.scenes.split(","):
         print(f"solver_accuracy: tracing {scene}", file=sys.stderr)
         traced, trace_cpu, _ = run_json([args.radquad, "trace", scene, "--samples", str(args.samples),
