@@ -1,34 +1,21 @@
+// The polar method of the exact gold's inner integral (source_moments.h): the moments of the
+// visible part of the source seen from a receiver point, edge by edge of its rings, at every
+// degree; at degrees 0-3 the edge nodes go through the lane batches of radial_moments.h.
 #include "reference/source_moments.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 
-#include "kernel/input_error.h"
 #include "kernel/legendre_basis.h"
 #include "quadrature/gauss_legendre.h"
-
-// With -fopenmp-simd (GCC, reference/CMakeLists.txt) the loops over a node batch's lanes that
-// call atan and log1p call glibc's vector versions (libmvec: 8 lanes with AVX-512, 4 with
-// AVX2), which err by at most 4 units in the last place; elsewhere, the scalar functions.
-// The declarations add the vector variants to glibc's own (global, C linkage) functions.
-#if defined(RADQUAD_VECTOR_MATH)
-extern "C" {
-#pragma omp declare simd notinbranch
-double atan(double) noexcept;
-#pragma omp declare simd notinbranch
-double log1p(double) noexcept;
-#pragma omp declare simd notinbranch
-double atan2(double, double) noexcept;
-}
-#endif
+#include "reference/radial_moments.h"
 
 namespace radquad {
 namespace {
 
-constexpr int kMaxPower = 2 * kMaxBasisDegree + 2;
-constexpr int kRadialPoints = 16;
+using detail::kLanes;
+using detail::kMaxPower;
 
 // Gauss points along a ring edge's piece. The pieces keep the integrand's singularity at
 // least a piece's length from its centre (Bernstein ellipse parameter at least 2 + sqrt(3)):
@@ -45,73 +32,6 @@ int edgePointsFor(double accuracy, int degree) {
   return accuracy < 1e-6 || degree >= 3 ? 12 : 8;
 }
 constexpr int kMaxEdgePoints = 12;
-
-// Where R / H reaches this, the radial moments of degrees <= 3 (powers <= 8) are taken by
-// the recurrences; below, by a Gauss rule (scaledRadialMoments, laneRadialMoments).
-constexpr double kRecurrenceFrom = 0.85;
-// At a loose accuracy (1e-6 or more) the eight-lane form takes the recurrences from 0.15,
-// and the 8-point rule below (exact to 1.5e-14 there). The recurrences lose digits as R / H
-// falls (each step subtracts terms about (R / H)^-2 times larger than its result): measured
-// against Gauss rules in long double, just above 0.15 they err by at most 1.3e-10 relative
-// up to the power 6 (degree 2) and 1.2e-8 at the power 8 (degree 3) with glibc's vector
-// atan and log1p (5e-11 and 5e-9 with the scalar ones), against the 2e-7 that the 8-point
-// edge rule allows.
-constexpr double kLooseRecurrenceFrom = 0.15;
-
-// j_m(X) = int_0^X r^m / (1 + r^2)^2 dr, m = 0..maxPower (N: the Gauss rule's points, a
-// multiple of 4).
-// Where X is small the recurrences (below) lose digits (l_m is a difference of terms about
-// X^-2 times larger than itself, at every step), so a Gauss rule takes them. The integrand's
-// only singularities are the poles at r = +-i: the smaller X, the larger their Bernstein
-// ellipse about [0, X] and the fewer points reach rounding. For powers up to 8 (degree <= 3),
-// measured against 30-digit quadrature on 400 values of X: 8 points up to X = 0.15, 12 up to
-// 0.85 and the recurrences above 0.85 all err by at most 1.5e-14 relative. Higher powers lose
-// more in the recurrences: 16 points up to X = 2 (below 1e-13).
-template <int N>
-void gaussRadialMoments(double X, int maxPower, double* out) {
-  static const GaussLegendreRule& rule = gaussLegendreUnit(N);
-  double r[N], term[N];
-  for (int k = 0; k < N; ++k) {
-    r[k] = X * rule.nodes[k];
-    const double denominator = 1.0 + r[k] * r[k];
-    term[k] = X * rule.weights[k] / (denominator * denominator);
-  }
-  for (int m = 0; m <= maxPower; ++m) {
-    // Four partial sums: short dependency chains.
-    double sum[4] = {0.0, 0.0, 0.0, 0.0};
-    for (int k = 0; k < N; k += 4) {
-      for (int j = 0; j < 4; ++j) sum[j] += term[k + j];
-    }
-    out[m] = (sum[0] + sum[1]) + (sum[2] + sum[3]);
-    for (int k = 0; k < N; ++k) term[k] *= r[k];
-  }
-}
-
-// Recurrences: l_m = int r^m / (1 + r^2) = X^(m-1) / (m-1) - l_(m-2), j_m = l_(m-2) - j_(m-2).
-void recurrentRadialMoments(double X, int maxPower, double* out) {
-  const double X2 = X * X;
-  std::array<double, kMaxPower + 1> l{};
-  l[0] = std::atan(X);
-  if (maxPower >= 1) l[1] = 0.5 * std::log1p(X2);
-  double power = X;  // X^(m-1)
-  for (int m = 2; m <= maxPower; ++m) {
-    l[m] = power / double(m - 1) - l[m - 2];
-    power *= X;
-  }
-  out[0] = 0.5 * (X / (1.0 + X2) + l[0]);
-  if (maxPower >= 1) out[1] = 0.5 * X2 / (1.0 + X2);
-  for (int m = 2; m <= maxPower; ++m) out[m] = l[m - 2] - out[m - 2];
-}
-
-void scaledRadialMoments(double X, int maxPower, double* out) {
-  if (maxPower <= 8) {
-    if (X <= 0.15) return gaussRadialMoments<8>(X, maxPower, out);
-    if (X <= kRecurrenceFrom) return gaussRadialMoments<12>(X, maxPower, out);
-  } else if (X <= 2.0) {
-    return gaussRadialMoments<kRadialPoints>(X, maxPower, out);
-  }
-  recurrentRadialMoments(X, maxPower, out);
-}
 
 // Coefficients in rho of the orthonormal shifted Legendre polynomials phi_0..phi_d at
 // t = t0 + t1 rho: coefficients[i * (d + 1) + k] multiplies rho^k.
@@ -165,92 +85,12 @@ void legendreAlongRay(int d, double t0, double t1, double* coefficients) {
   }
 }
 
-// The nodes of one receiver point, a batch of kLanes at a time (degree <= 3): each step below
-// is one loop over the lanes with no branch, which the compiler turns into vector
-// instructions.
-constexpr int kLanes = 8;
-
+// kLanes edge nodes of one receiver point (degree <= 3): each step of accumulateBatch is one
+// loop over the lanes with no branch.
 struct NodeBatch {
   double wx[kLanes], wy[kLanes], weight[kLanes];
   int count = 0;
 };
-
-// j_m(X[k]) = int_0^X[k] r^m / (1 + r^2)^2 dr for m = 0..P on every lane: the N-point
-// Gauss rule where X <= from and the recurrences above: from = 0.85 with N = 12 (as
-// scaledRadialMoments, which takes 8 points below 0.15: 12 are as exact there), or
-// kLooseRecurrenceFrom with N = 8; lanes on both sides of `from` compute both and keep each
-// lane's own.
-template <int P, int N>
-void laneRadialMoments(const double* X, double from, double (&j)[P + 1][kLanes]) {
-  static const GaussLegendreRule& rule = gaussLegendreUnit(N);
-  bool small = false, large = false;
-  for (int k = 0; k < kLanes; ++k) {
-    small = small || X[k] <= from;
-    large = large || !(X[k] <= from);  // NaN included: it then propagates
-  }
-  for (int m = 0; m <= P; ++m) {
-    for (int k = 0; k < kLanes; ++k) j[m][k] = 0.0;
-  }
-  if (small) {
-    for (int q = 0; q < N; ++q) {
-      const double node = rule.nodes[std::size_t(q)], w = rule.weights[std::size_t(q)];
-      double r[kLanes], term[kLanes];
-      for (int k = 0; k < kLanes; ++k) {
-        r[k] = X[k] * node;
-        const double denominator = 1.0 + r[k] * r[k];
-        term[k] = X[k] * w / (denominator * denominator);
-      }
-      for (int m = 0; m <= P; ++m) {
-        for (int k = 0; k < kLanes; ++k) {
-          j[m][k] += term[k];
-          term[k] *= r[k];
-        }
-      }
-    }
-  }
-  if (large) {
-    double l[P + 1][kLanes], jr[P + 1][kLanes];
-    double squares[kLanes];
-    for (int k = 0; k < kLanes; ++k) squares[k] = X[k] * X[k];
-#if defined(RADQUAD_VECTOR_MATH)
-#pragma omp simd
-#endif
-    for (int k = 0; k < kLanes; ++k) l[0][k] = ::atan(X[k]);
-#if defined(RADQUAD_VECTOR_MATH)
-#pragma omp simd
-#endif
-    for (int k = 0; k < kLanes; ++k) l[1][k] = 0.5 * ::log1p(squares[k]);
-    double power[kLanes];
-    for (int k = 0; k < kLanes; ++k) power[k] = X[k];
-    for (int m = 2; m <= P; ++m) {
-      for (int k = 0; k < kLanes; ++k) {
-        l[m][k] = power[k] * (1.0 / double(m - 1)) - l[m - 2][k];
-        power[k] *= X[k];
-      }
-    }
-    for (int k = 0; k < kLanes; ++k) {
-      const double inverse = 1.0 / (1.0 + squares[k]);
-      jr[0][k] = 0.5 * (X[k] * inverse + l[0][k]);
-      jr[1][k] = 0.5 * squares[k] * inverse;
-    }
-    for (int m = 2; m <= P; ++m) {
-      for (int k = 0; k < kLanes; ++k) jr[m][k] = l[m - 2][k] - jr[m - 2][k];
-    }
-    for (int m = 0; m <= P; ++m) {
-      for (int k = 0; k < kLanes; ++k) j[m][k] = X[k] <= from ? j[m][k] : jr[m][k];
-    }
-  }
-}
-
-// The tight form (12 points up to 0.85) or the loose one (8 points up to 0.15).
-template <int P>
-void laneRadialMoments(const double* X, bool loose, double (&j)[P + 1][kLanes]) {
-  if (loose) {
-    laneRadialMoments<P, 8>(X, kLooseRecurrenceFrom, j);
-  } else {
-    laneRadialMoments<P, 12>(X, kRecurrenceFrom, j);
-  }
-}
 
 // `batch` holds kLanes nodes (those past its count padded by the caller: pad()).
 template <int D>
@@ -272,7 +112,7 @@ void accumulateBatch(const NodeBatch& batch, double H, double a0, double nx, dou
     X[k] = invH / inverseR;
   }
   double j[P + 1][kLanes];
-  laneRadialMoments<P>(X, loose, j);
+  detail::laneRadialMoments<P>(X, loose, j);
   // J_m = H^(m-3) j_m; Q_k = weight (a0 J_(k+1) + a1 J_(k+2)); T[k][l] += su^k sv^l Q_(k+l).
   double Q[2 * D + 1][kLanes];
   double scale = invH * invH;  // H^(m-2) at m = 0: the scale of J_(m+1)
@@ -298,15 +138,6 @@ void accumulateBatch(const NodeBatch& batch, double H, double a0, double nx, dou
   }
 }
 
-// T[i] = the sum of the lanes of laneT[i] (i < entries), in a fixed order.
-void sumLanes(const double* laneT, int entries, double* T) {
-  for (int i = 0; i < entries; ++i) {
-    const double* lanes = laneT + i * kLanes;
-    T[i] = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
-           ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
-  }
-}
-
 // Fills the lanes past the batch's count (at least one is used) with copies of the first
 // node and no weight: finite values that add exactly nothing, in the first node's branch.
 void pad(NodeBatch& batch) {
@@ -318,31 +149,6 @@ void pad(NodeBatch& batch) {
 }
 
 }  // namespace
-
-// J_m(R, H) = H^(m-3) j_m(R / H).
-void radialMoments(double R, double H, int maxPower, double* out) {
-  scaledRadialMoments(R / H, maxPower, out);
-  double scale = 1.0 / (H * H * H);  // H^(m-3)
-  for (int m = 0; m <= maxPower; ++m) {
-    out[m] *= scale;
-    scale *= H;
-  }
-}
-
-void laneRadialMoments(const double* X, int maxPower, double* out, bool loose) {
-  auto copy = [&](const auto& j) {
-    for (int m = 0; m <= maxPower; ++m) {
-      for (int k = 0; k < kLanes; ++k) out[m * kLanes + k] = j[m][k];
-    }
-  };
-  switch (maxPower) {
-    case 2: { double j[3][kLanes]; laneRadialMoments<2>(X, loose, j); return copy(j); }
-    case 4: { double j[5][kLanes]; laneRadialMoments<4>(X, loose, j); return copy(j); }
-    case 6: { double j[7][kLanes]; laneRadialMoments<6>(X, loose, j); return copy(j); }
-    case 8: { double j[9][kLanes]; laneRadialMoments<8>(X, loose, j); return copy(j); }
-    default: throw InputError("laneRadialMoments: maxPower must be 2, 4, 6 or 8");
-  }
-}
 
 SourceMoments::SourceMoments(const Patch& source, int degree, double accuracy)
     : source_(source),
@@ -356,84 +162,6 @@ SourceMoments::SourceMoments(const Patch& source, int degree, double accuracy)
   toPlane_ << source.edgeU.dot(axisX_), source.edgeV.dot(axisX_), source.edgeU.dot(axisY_),
       source.edgeV.dot(axisY_);
   toParameters_ = toPlane_.inverse();
-}
-
-double SourceMoments::formFactor(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
-                                 const VisibleRings& visible) const {
-  // Lambert: sum over edges (r0, r1) of n . (r0 x r1) / |r0 x r1| * angle(r0, r1), r the
-  // offsets of the ring's vertices from x. The edges, of all rings and segments in turn, go
-  // kLanes at a time through branch-free loops over the lanes (vector instructions; with
-  // GCC, glibc's vector atan2), each lane summing its own edges; the lanes are summed in a
-  // fixed order at the end.
-  const Eigen::Vector3d o = source_.origin - x;
-  const Eigen::Vector3d& eu = source_.edgeU;
-  const Eigen::Vector3d& ev = source_.edgeV;
-  double lanes[kLanes] = {};
-  // The edges of every ring and the outline's segments, one after another, fill the lanes;
-  // a batch goes through the loops below when full, and the last one padded.
-  double ax[kLanes], ay[kLanes], az[kLanes], bx[kLanes], by[kLanes], bz[kLanes];
-  double weight[kLanes];
-  int filled = 0;
-  const auto flush = [&] {
-    // Lanes past the last edge repeat the first with no weight.
-    for (int k = filled; k < kLanes; ++k) {
-      ax[k] = ax[0];
-      ay[k] = ay[0];
-      az[k] = az[0];
-      bx[k] = bx[0];
-      by[k] = by[0];
-      bz[k] = bz[0];
-      weight[k] = 0.0;
-    }
-    double crossNorm[kLanes], cosine[kLanes], normal[kLanes];
-    for (int k = 0; k < kLanes; ++k) {
-      const double cx = ay[k] * bz[k] - az[k] * by[k];
-      const double cy = az[k] * bx[k] - ax[k] * bz[k];
-      const double cz = ax[k] * by[k] - ay[k] * bx[k];
-      crossNorm[k] = std::sqrt(cx * cx + cy * cy + cz * cz);
-      cosine[k] = ax[k] * bx[k] + ay[k] * by[k] + az[k] * bz[k];
-      normal[k] = n.x() * cx + n.y() * cy + n.z() * cz;
-    }
-    double angle[kLanes];
-#if defined(RADQUAD_VECTOR_MATH)
-#pragma omp simd
-#endif
-    for (int k = 0; k < kLanes; ++k) angle[k] = ::atan2(crossNorm[k], cosine[k]);
-    for (int k = 0; k < kLanes; ++k) {
-      // A zero cross product (an edge of no length, or in line with x) adds nothing.
-      const bool some = crossNorm[k] > 0.0;
-      const double inverse = 1.0 / (some ? crossNorm[k] : 1.0);
-      lanes[k] += some ? weight[k] * normal[k] * inverse * angle[k] : 0.0;
-    }
-    filled = 0;
-  };
-  // One edge (a, b) in (u, v), counted with weight w.
-  const auto push = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, double w) {
-    const int k = filled;
-    ax[k] = o.x() + a.x() * eu.x() + a.y() * ev.x();
-    ay[k] = o.y() + a.x() * eu.y() + a.y() * ev.y();
-    az[k] = o.z() + a.x() * eu.z() + a.y() * ev.z();
-    bx[k] = o.x() + b.x() * eu.x() + b.y() * ev.x();
-    by[k] = o.y() + b.x() * eu.y() + b.y() * ev.y();
-    bz[k] = o.z() + b.x() * eu.z() + b.y() * ev.z();
-    weight[k] = w;
-    if (++filled == kLanes) flush();
-  };
-  // An edge counter-clockwise about the source's normal, seen from x in front of the source,
-  // gives a negative term.
-  for (std::size_t r = 0; r < visible.count(); ++r) {
-    const SourceRing& ring = visible.ring(r);
-    const std::size_t count = ring.size();
-    const double sign = -visible.sign(r);
-    for (std::size_t i = 0; i < count; ++i) push(ring[i], ring[i + 1 < count ? i + 1 : 0], sign);
-  }
-  for (std::size_t i = 0; i < visible.segmentCount(); ++i) {
-    push(visible.segmentStart(i), visible.segmentEnd(i), -visible.segmentSign(i));
-  }
-  if (filled > 0) flush();
-  double total = 0.0;
-  sumLanes(lanes, 1, &total);
-  return total / (2.0 * std::numbers::pi);
 }
 
 void SourceMoments::compute(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
@@ -588,7 +316,7 @@ void SourceMoments::polar(const Eigen::Vector3d& x, const Eigen::Vector3d& n,
       pad(batch);
       accumulateBatch<D>(batch, H, a0, nx, ny, toParameters_, loose_, laneT);
     }
-    sumLanes(laneT, stride * stride, T);
+    detail::sumLanes(laneT, stride * stride, T);
   }
   // I[i][j] = kernelScale sum_k CU[i][k] sum_l CV[j][l] T[k][l] (C lower triangular).
   for (int i = 0; i <= d; ++i) {
