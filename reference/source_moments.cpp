@@ -20,7 +20,7 @@ using detail::kMaxPower;
 // Gauss points along a ring edge's piece. The pieces keep the integrand's singularity at
 // least a piece's length from its centre (Bernstein ellipse parameter at least 2 + sqrt(3)):
 // 12 points err by about 1e-14 relative; 8 points by at most 2e-7 on points as close to the
-// source as a twentieth of its size (tests/reference/exact_gold_test.cpp), where the
+// source as a twentieth of its size (tests/reference/source_moments_test.cpp), where the
 // polynomial weights cancel most. Where x is beside the source and near its plane, the
 // edges' terms cancel (the source is seen at grazing angles, its moments are small) and the
 // error relative to x's own moments grows: over 20,000 random points and visible rings a
