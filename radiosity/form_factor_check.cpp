@@ -81,10 +81,9 @@ std::size_t Solver::markSumViolations() {
       const SolverLink& link = links_[std::size_t(index)];
       if (!link.active) continue;
       const Element& source = (*hierarchy_)[link.source];
-      const auto splittable = [&](const Element& element) {
-        return element.geometry.area > minArea_ && element.level < options_.maxLevel;
-      };
-      const char side = splittable(source) ? kSplitSource : splittable(leaf) ? kSplitReceiver : 0;
+      const char side = splittable(source, minArea_)  ? kSplitSource
+                        : splittable(leaf, minArea_) ? kSplitReceiver
+                                                     : 0;
       if (side == 0) continue;
       forcedSplit_[std::size_t(index)] = side;
       ++marked;

@@ -17,7 +17,6 @@ bool pointOnPatch(const Eigen::Vector3d& point, const Patch& patch, double toler
   return u >= -slackU && u <= 1.0 + slackU && v >= -slackV && v <= 1.0 + slackV;
 }
 
-
 }  // namespace
 
 bool elementsTouch(const Patch& a, const Patch& b) {

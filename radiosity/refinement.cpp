@@ -127,7 +127,7 @@ double Solver::oracleFormFactor(const SolverLink& link) const {
   const Element& receiver = (*hierarchy_)[link.receiver];
   const Element& source = (*hierarchy_)[link.source];
   const Element& larger = receiver.geometry.area >= source.geometry.area ? receiver : source;
-  if (larger.geometry.area <= smallestArea(link) || larger.level >= options_.maxLevel) return 0.0;
+  if (!splittable(larger, smallestArea(link))) return 0.0;
   const Patch& r = receiver.geometry;
   const Patch& s = source.geometry;
   if (!link.nearField) return discFormFactor(r, r.centre(), s, s.centre());
@@ -178,10 +178,7 @@ bool Solver::sourceVariationMatters(const SolverLink& link, double formFactor) c
   // Elements created in this pass are leaves when they are measured: nothing to show.
   if (std::size_t(link.source) >= sourceVariation_.size()) return false;
   const Element& source = (*hierarchy_)[link.source];
-  if (source.isLeaf() || source.geometry.area <= smallestArea(link) ||
-      source.level >= options_.maxLevel) {
-    return false;
-  }
+  if (source.isLeaf() || !splittable(source, smallestArea(link))) return false;
   const Element& receiver = (*hierarchy_)[link.receiver];
   const Eigen::Vector3d variation = sourceVariation_[std::size_t(link.source)].cast<double>();
   const Eigen::Vector3d own = receiver.meanRadiosity().cwiseMax(options_.bfEpsilon * radiosityScale_);
@@ -198,6 +195,8 @@ int Solver::oracleChoice(SolverLink& link) const {
 }
 
 void Solver::measureSourceVariation() {
+  // With the test off, nothing reads the measure (sourceVariationMatters).
+  if (!(options_.variationEpsilon > 0.0)) return;
   const std::size_t count = hierarchy_->size();
   sourceVariation_.assign(count, Eigen::Vector3f::Zero());
   const TwoScale& twoScale = hierarchy_->twoScale();

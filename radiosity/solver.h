@@ -280,6 +280,10 @@ class Solver {
   // The area at or below which neither element of the link is split: the smallest area,
   // or less for a near link across a gap narrower than the smallest element (refinement.cpp).
   double smallestArea(const SolverLink& link) const;
+  // Whether an element may be split, where elements at or below `smallest` may not.
+  bool splittable(const Element& element, double smallest) const {
+    return element.geometry.area > smallest && element.level < options_.maxLevel;
+  }
   // The oracle's form-factor estimate, in double precision (0 where the link's larger element
   // may not be split).
   double oracleFormFactor(const SolverLink& link) const;
